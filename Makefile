@@ -1,0 +1,80 @@
+# refray — build with GNU make. `make demo` and `make test` are the whole set-up on Debian 12:
+# a missing dependency runs tools/deps.sh, which installs the Debian packages as root or prints
+# the apt-get line to run.
+#
+#   make            build the library (build/librefray.a) and the command (build/refray)
+#   make test       build and run every test; the last line is "N passed, N failed"
+#   make demo       the main job (for now: a tour of `refray formula`)
+#   make install PREFIX=/usr/local
+#   make clean
+#   Options: BUILD=dir (default build), SAN=1 (AddressSanitizer + UBSan), OPT="-O2 -g"
+
+BUILD   ?= build
+PREFIX  ?= /usr/local
+OPT     ?= -O2 -g
+SAN     ?=
+# the Debian pkg-config modules the library links against (tools/deps.sh installs them)
+PKGS    := libcjson
+
+comma := ,
+SANFLAGS := $(if $(SAN),-fsanitize=address$(comma)undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+# -ffp-contract=off: results must not depend on the compiler fusing a*b+c (DESIGN.md)
+CFLAGS_ALL = -std=c99 -D_POSIX_C_SOURCE=200809L $(OPT) -Wall -Wextra -Wpedantic -Werror \
+             -ffp-contract=off -Iinclude $(PKG_CFLAGS) $(SANFLAGS) $(CFLAGS)
+LDFLAGS_ALL = $(SANFLAGS) $(LDFLAGS)
+LDLIBS_ALL  = $(PKG_LIBS) -lm $(LDLIBS)
+
+LIB_SRC  := $(wildcard src/core/*.c src/color/*.c src/geom/*.c src/scene/*.c src/render/*.c \
+                       src/io/*.c src/formula/*.c)
+CLI_SRC  := $(wildcard src/cli/*.c)
+TEST_SRC := $(wildcard tests/*.c)
+obj = $(patsubst %.c,$(BUILD)/obj/%.o,$(1))
+
+LIB  := $(BUILD)/librefray.a
+BIN  := $(BUILD)/refray
+TEST := $(BUILD)/refray-tests
+
+.PHONY: all test demo install clean
+all: $(LIB) $(BIN)
+
+# Dependencies: checked (and installed) once per build folder, then the flags are cached.
+NO_CONFIG_GOALS := clean
+ifneq ($(filter-out $(NO_CONFIG_GOALS),$(or $(MAKECMDGOALS),all)),)
+include $(BUILD)/config.mk
+endif
+$(BUILD)/config.mk: tools/deps.sh Makefile
+	@mkdir -p $(BUILD)
+	@sh tools/deps.sh
+	@{ echo "PKG_CFLAGS := $$(pkg-config --cflags $(PKGS))"; \
+	   echo "PKG_LIBS := $$(pkg-config --libs $(PKGS))"; } > $@.tmp && mv $@.tmp $@
+
+$(BUILD)/obj/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -MMD -MP -c $< -o $@
+
+$(LIB): $(call obj,$(LIB_SRC))
+	@rm -f $@
+	$(AR) rcs $@ $^
+
+$(BIN): $(call obj,$(CLI_SRC)) $(LIB)
+	$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL)
+
+$(TEST): $(call obj,$(TEST_SRC)) $(LIB)
+	$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL)
+
+test: $(TEST) $(BIN)
+	RF_BIN=$(BIN) RF_TEST_DATA=tests/data $(TEST)
+
+demo: $(BIN)
+	@sh tools/demo.sh $(BIN)
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/refray
+	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/refray
+	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/librefray.a
+	install -m 644 include/refray/*.h $(DESTDIR)$(PREFIX)/include/refray/
+
+clean:
+	rm -rf build build-san $(filter-out build build-san,$(BUILD))
+
+-include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)

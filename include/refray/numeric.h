@@ -1,0 +1,18 @@
+/* refray: the numeric policy. Every tolerance of the library lives here, with its reason.
+ * Exact formulas use no tolerance at all; these only decide classifications (is a matrix
+ * singular, is a basis orthonormal) that have no exact answer in floating point. */
+#ifndef REFRAY_NUMERIC_H
+#define REFRAY_NUMERIC_H
+
+/* Relative pivot size below which Gaussian elimination calls a matrix singular: a pivot
+ * |p| <= RF_SINGULAR_REL * max|a_ij| means the matrix is within a few ulps of a singular one
+ * (the elimination error is O(n * eps) relative to the largest entry, eps = 2.2e-16). */
+#define RF_SINGULAR_REL 1e-13
+
+/* Tolerance for the structural predicates "orthogonal", "orthonormal", "similarity":
+ * |(M^T M)_ij - lambda * delta_ij| <= RF_STRUCTURE_TOL * lambda. A product of a few exact
+ * rotations built from sin/cos is orthonormal to about 1e-15; 1e-12 leaves room for chains of
+ * transforms while rejecting any genuine non-uniform scale or shear. */
+#define RF_STRUCTURE_TOL 1e-12
+
+#endif

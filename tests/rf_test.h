@@ -1,0 +1,54 @@
+/* refray's test runner: each test file defines test functions and a table of them; main.c
+ * lists the tables. A test fails when any check in it fails; the run ends with the line
+ * "N passed, N failed" (tests, not checks). */
+#ifndef RF_TEST_H
+#define RF_TEST_H
+
+#include <math.h>
+#include <stdio.h>
+
+typedef struct {
+    const char *name;
+    void (*fn)(void);
+} RfTest;
+
+/* Set by the checks; read by the runner. */
+extern int rf_test_failed_checks;
+extern long rf_test_checks;
+
+void rf_test_fail(const char *file, int line, const char *fmt, ...);
+/* |a - b| <= rel * max(|a|, |b|) + abs_tol */
+int rf_test_near(double a, double b, double rel, double abs_tol);
+/* Environment helpers: the built binary and the test data folder. */
+const char *rf_test_bin(void);
+const char *rf_test_data(const char *name); /* static buffer: tests/data/<name> */
+/* Runs a shell command, captures stdout (static buffer) and the exit code. */
+const char *rf_test_run(const char *cmd, int *exit_code);
+
+#define RF_CHECK(cond)                                                                       \
+    do {                                                                                     \
+        rf_test_checks++;                                                                    \
+        if (!(cond))                                                                         \
+            rf_test_fail(__FILE__, __LINE__, "check failed: %s", #cond);                    \
+    } while (0)
+
+#define RF_CHECK_NEAR(a, b, rel, abs_tol)                                                    \
+    do {                                                                                     \
+        double rf_a_ = (a), rf_b_ = (b);                                                     \
+        rf_test_checks++;                                                                    \
+        if (!rf_test_near(rf_a_, rf_b_, (rel), (abs_tol)))                                   \
+            rf_test_fail(__FILE__, __LINE__, "%s = %.17g, expected %s = %.17g (rel %g, abs %g)", \
+                         #a, rf_a_, #b, rf_b_, (double)(rel), (double)(abs_tol));            \
+    } while (0)
+
+#define RF_CHECK_EQ_INT(a, b)                                                                \
+    do {                                                                                     \
+        long rf_a_ = (long)(a), rf_b_ = (long)(b);                                           \
+        rf_test_checks++;                                                                    \
+        if (rf_a_ != rf_b_)                                                                  \
+            rf_test_fail(__FILE__, __LINE__, "%s = %ld, expected %ld", #a, rf_a_, rf_b_);    \
+    } while (0)
+
+#define RF_TEST_END {NULL, NULL}
+
+#endif

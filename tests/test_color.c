@@ -1,0 +1,3 @@
+#include "rf_test.h"
+
+const RfTest rf_tests_color[] = {RF_TEST_END};

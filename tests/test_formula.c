@@ -1,0 +1,2 @@
+#include "rf_test.h"
+const RfTest rf_tests_formula[] = {RF_TEST_END};

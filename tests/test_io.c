@@ -1,0 +1,3 @@
+#include "rf_test.h"
+
+const RfTest rf_tests_io[] = {RF_TEST_END};

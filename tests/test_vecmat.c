@@ -1,0 +1,2 @@
+#include "rf_test.h"
+const RfTest rf_tests_vecmat[] = {RF_TEST_END};

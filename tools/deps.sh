@@ -1,0 +1,38 @@
+#!/bin/sh
+# refray's one set-up script. The Makefile runs it when a dependency is missing:
+# as root it installs the Debian packages; otherwise it prints the one apt-get line and fails.
+# Usage: tools/deps.sh check   (exit 0 when everything is present, quiet)
+#        tools/deps.sh         (install or print the line)
+set -u
+PACKAGES="build-essential pkg-config libcjson-dev libpng-dev libopenexr-dev libosmesa6-dev \
+libglfw3-dev libcgal-dev libgmp-dev libmpfr-dev"
+
+# pkg-config modules that the build links against; CGAL is header-only, so its header is checked.
+missing() {
+    for m in libcjson libpng OpenEXR osmesa glfw3; do
+        pkg-config --exists "$m" 2>/dev/null || echo "$m"
+    done
+    [ -f /usr/include/CGAL/version.h ] || echo "CGAL"
+    command -v cc >/dev/null 2>&1 || echo "cc"
+}
+
+command -v pkg-config >/dev/null 2>&1 || need_pkgconfig=1
+m=$(missing | tr '\n' ' ')
+if [ -z "$m" ] && [ -z "${need_pkgconfig:-}" ]; then
+    exit 0
+fi
+[ "${1:-}" = check ] && exit 1
+
+echo "refray: missing dependencies: ${m}" >&2
+if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+    echo "refray: installing Debian packages: $PACKAGES" >&2
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq >&2 && apt-get install -y -qq --no-install-recommends $PACKAGES >&2 || {
+        echo "refray: apt-get failed; install by hand: apt-get install $PACKAGES" >&2; exit 1; }
+    m=$(missing | tr '\n' ' ')
+    [ -z "$m" ] || { echo "refray: still missing after install: $m" >&2; exit 1; }
+    exit 0
+fi
+echo "refray: run this once, then repeat the make command:" >&2
+echo "  sudo apt-get install $PACKAGES" >&2
+exit 1
