@@ -22,6 +22,10 @@ int rf_test_near(double a, double b, double rel, double abs_tol);
 /* Environment helpers: the built binary and the test data folder. */
 const char *rf_test_bin(void);
 const char *rf_test_data(const char *name); /* static buffer: tests/data/<name> */
+/* Runs every case of tests/data/<file> (JSON lines of independently computed formula cases,
+ * see tests/formula_cases.c) through the registry; numbers must agree to
+ * rel * max(|a|,|b|) + abs_tol (a case may override both). Returns the number of cases. */
+int rf_test_formula_cases(const char *file, double rel, double abs_tol);
 /* Runs a shell command, captures stdout (static buffer) and the exit code. */
 const char *rf_test_run(const char *cmd, int *exit_code);
 
@@ -50,5 +54,16 @@ const char *rf_test_run(const char *cmd, int *exit_code);
     } while (0)
 
 #define RF_TEST_END {NULL, NULL}
+
+/* A reproducible random stream for property tests (splitmix64), uniform in [lo, hi). */
+typedef struct { unsigned long long state; } RfTestRng;
+static inline double rf_test_uniform(RfTestRng *r, double lo, double hi)
+{
+    unsigned long long z = (r->state += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return lo + (hi - lo) * (double)(z >> 11) * (1.0 / 9007199254740992.0);
+}
 
 #endif

@@ -54,6 +54,11 @@ char *rf_formula_args_to_json(int argc, char **argv, char *err, size_t err_size)
  * Returns the number of cases that failed. */
 int rf_formula_batch(FILE *in, FILE *out);
 
+/* JSON text of a cJSON tree (malloc'ed) with numbers that round-trip exactly (cJSON's own
+ * printer rounds to 15 digits when it deems that close enough). NULL when out of memory. */
+struct cJSON;
+char *rf_formula_json_text(const struct cJSON *j);
+
 /* Writes the help of one formula (inputs, outputs, section, erratum). */
 void rf_formula_help(const RfFormula *f, FILE *out);
 

@@ -21,7 +21,8 @@ void rf_matn_mul_vec(int n, const double *a, const double *x, double *out);
 /* Determinant by partial-pivoting elimination. */
 double rf_matn_det(int n, const double *a);
 /* Inverse by Gauss-Jordan elimination with partial pivoting; RF_ERR_SINGULAR when a pivot
- * falls under RF_SINGULAR_REL times the largest entry (numeric.h). out is left untouched then. */
+ * falls under RF_SINGULAR_REL times the largest entry (numeric.h), RF_ERR_DOMAIN for a NaN or
+ * infinite entry. out is left untouched then. */
 RfStatus rf_matn_inverse(int n, const double *a, double *out);
 /* Solves a x = b (same pivoting and singularity rule). */
 RfStatus rf_matn_solve(int n, const double *a, const double *b, double *x);

@@ -58,13 +58,16 @@ static double max_abs(int n, const double *a)
 
 /* Gauss-Jordan elimination with partial pivoting on [A | B], B with nb columns.
  * On success B holds A^-1 B. Returns RF_ERR_SINGULAR when a pivot is under RF_SINGULAR_REL
- * times the largest entry of A. */
+ * times the largest entry of A, RF_ERR_DOMAIN when an entry is not finite. */
 static RfStatus gauss_jordan(int n, const double *a_in, int nb, double *b)
 {
     double a[RF_MATN_MAX * RF_MATN_MAX];
     double scale = max_abs(n, a_in);
     memcpy(a, a_in, sizeof(double) * (size_t)(n * n));
-    if (!(scale > 0.0) || !isfinite(scale))
+    for (int i = 0; i < n * n; i++)
+        if (!isfinite(a[i]))
+            return RF_ERR_DOMAIN;
+    if (!(scale > 0.0))
         return RF_ERR_SINGULAR;
     for (int col = 0; col < n; col++) {
         int piv = col;

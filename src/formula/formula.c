@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "refray/mat.h"
 
@@ -116,6 +117,97 @@ static int spec_find(const char *spec, const char *name, SpecItem *it)
     return 0;
 }
 
+/* ---- JSON output ----
+ * cJSON's own printer decides that a number "round-trips" when the reparsed value is within
+ * DBL_EPSILON relative (cJSON 1.7.15), so 0.30000000000000004 would print as 0.3. The contract
+ * needs exact round trips: this printer writes the shortest of %.15g, %.16g, %.17g that reads
+ * back as the same double. */
+
+typedef struct {
+    char *data;
+    size_t len, cap;
+    int oom;
+} TextBuf;
+
+static void buf_put(TextBuf *b, const char *s, size_t n)
+{
+    if (b->oom)
+        return;
+    if (b->len + n + 1 > b->cap) {
+        size_t cap = b->cap ? b->cap : 256;
+        while (cap < b->len + n + 1)
+            cap *= 2;
+        char *d = realloc(b->data, cap);
+        if (!d) {
+            b->oom = 1;
+            return;
+        }
+        b->data = d;
+        b->cap = cap;
+    }
+    memcpy(b->data + b->len, s, n);
+    b->len += n;
+    b->data[b->len] = 0;
+}
+
+static void buf_str(TextBuf *b, const char *s) { buf_put(b, s, strlen(s)); }
+
+static void print_number(TextBuf *b, double v)
+{
+    char text[40];
+    for (int digits = 15; digits <= 17; digits++) {
+        snprintf(text, sizeof text, "%.*g", digits, v);
+        if (strtod(text, NULL) == v)
+            break;
+    }
+    buf_str(b, text);
+}
+
+static void print_json(TextBuf *b, const cJSON *j)
+{
+    const cJSON *e;
+    if (cJSON_IsNumber(j)) {
+        print_number(b, j->valuedouble);
+    } else if (cJSON_IsBool(j)) {
+        buf_str(b, cJSON_IsTrue(j) ? "true" : "false");
+    } else if (cJSON_IsString(j)) {
+        char *quoted = cJSON_PrintUnformatted(j); /* cJSON escapes strings correctly */
+        buf_str(b, quoted ? quoted : "\"\"");
+        free(quoted);
+    } else if (cJSON_IsArray(j) || cJSON_IsObject(j)) {
+        int first = 1, obj = cJSON_IsObject(j);
+        buf_str(b, obj ? "{" : "[");
+        cJSON_ArrayForEach(e, j) {
+            if (!first)
+                buf_str(b, ",");
+            first = 0;
+            if (obj) {
+                cJSON key;
+                memset(&key, 0, sizeof key);
+                key.type = cJSON_String;
+                key.valuestring = e->string;
+                print_json(b, &key);
+                buf_str(b, ":");
+            }
+            print_json(b, e);
+        }
+        buf_str(b, obj ? "}" : "]");
+    } else {
+        buf_str(b, "null");
+    }
+}
+
+char *rf_formula_json_text(const struct cJSON *j)
+{
+    TextBuf b = {NULL, 0, 0, 0};
+    print_json(&b, j);
+    if (b.oom) {
+        free(b.data);
+        return NULL;
+    }
+    return b.data;
+}
+
 /* ---- command-line values -> JSON ---- */
 
 /* Parses s (length n) as one finite number; returns 1 on success. */
@@ -191,6 +283,10 @@ static cJSON *value_to_json(const char *s)
     cJSON *num = numbers_to_json(s);
     if (num)
         return num;
+    /* non-finite numbers are refused, whatever their spelling */
+    if (strpbrk(s, ",;") || strncasecmp(s, "nan", 3) == 0 || strncasecmp(s, "inf", 3) == 0 ||
+        strncasecmp(s, "-inf", 4) == 0 || strncasecmp(s, "+inf", 4) == 0)
+        return NULL;
     /* a word; something that starts like a number but did not parse is an error */
     if (*s == 0 || strchr("0123456789+-.", *s))
         return NULL;
@@ -227,7 +323,7 @@ char *rf_formula_args_to_json(int argc, char **argv, char *err, size_t err_size)
         }
         cJSON_AddItemToObject(obj, key, v);
     }
-    char *text = cJSON_PrintUnformatted(obj);
+    char *text = rf_formula_json_text(obj);
     cJSON_Delete(obj);
     return text;
 }
@@ -608,9 +704,9 @@ int rf_formula_run_json(const RfFormula *f, const char *in_json, char **out_json
         *out_json = strdup(error);
         return 1;
     }
-    *out_json = cJSON_PrintUnformatted(out);
+    *out_json = rf_formula_json_text(out);
     cJSON_Delete(out);
-    return 0;
+    return *out_json ? 0 : 1;
 }
 
 /* Reads one line of any length; returns NULL at the end of the input. */
@@ -681,7 +777,7 @@ int rf_formula_batch(FILE *in, FILE *out)
             cJSON_AddStringToObject(reply, "error", error);
             failures++;
         }
-        char *text = cJSON_PrintUnformatted(reply);
+        char *text = rf_formula_json_text(reply);
         fprintf(out, "%s\n", text ? text : "{\"id\":null,\"error\":\"out of memory\"}");
         fflush(out);
         free(text);
