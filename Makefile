@@ -14,7 +14,7 @@ PREFIX  ?= /usr/local
 OPT     ?= -O2 -g
 SAN     ?=
 # the Debian pkg-config modules the library links against (tools/deps.sh installs them)
-PKGS    := libcjson
+PKGS    := libcjson cairo fontconfig zlib libpng OpenEXR
 
 comma := ,
 SANFLAGS := $(if $(SAN),-fsanitize=address$(comma)undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)

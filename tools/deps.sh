@@ -5,11 +5,11 @@
 #        tools/deps.sh         (install or print the line)
 set -u
 PACKAGES="build-essential pkg-config libcjson-dev libpng-dev libopenexr-dev libosmesa6-dev \
-libglfw3-dev libcgal-dev libgmp-dev libmpfr-dev"
+libglfw3-dev libcgal-dev libgmp-dev libmpfr-dev libcairo2-dev libfontconfig-dev zlib1g-dev"
 
 # pkg-config modules that the build links against; CGAL is header-only, so its header is checked.
 missing() {
-    for m in libcjson libpng OpenEXR osmesa glfw3; do
+    for m in libcjson libpng OpenEXR osmesa glfw3 cairo fontconfig zlib; do
         pkg-config --exists "$m" 2>/dev/null || echo "$m"
     done
     [ -f /usr/include/CGAL/version.h ] || echo "CGAL"

@@ -15,8 +15,14 @@ typedef struct {
     float *data;
 } RfImage;
 
-RfStatus rf_image_alloc(RfImage *img, int width, int height, int channels); /* zeroed */
-void rf_image_free(RfImage *img);
+/* The largest image accepted, in pixels (16384 x 16384; 4 GiB as RGBA floats): sizes read from
+ * a corrupt header are refused before anything is allocated. */
+#define RF_IMAGE_MAX_PIXELS ((size_t)1 << 28)
+
+/* Zeroed pixels. RF_ERR_DOMAIN for a size <= 0, above RF_IMAGE_MAX_PIXELS, or channels not
+ * 1, 3 or 4; RF_ERR_NOMEM when the allocation fails. On failure *img is empty (data NULL). */
+RfStatus rf_image_alloc(RfImage *img, int width, int height, int channels);
+void rf_image_free(RfImage *img); /* safe on an empty or already freed image */
 
 /* How PNG maps values to 8- or 16-bit codes: as they are (already display-encoded),
  * with the power curve v^(1/gamma) (the script's §1.1.2), or with the sRGB curve. Values are
@@ -34,12 +40,45 @@ typedef struct {
     const char *name, *value;
 } RfImageAttr;
 
-/* err gets one line "path: message" on failure. */
+/* How an EXR is stored. ZIP (zlib over 16 scanlines) is the default: lossless, so floats read back
+ * bit-exact, and read by every OpenEXR reader. PIZ is lossless too; NONE is the fastest. */
+typedef enum { RF_EXR_ZIP, RF_EXR_NONE, RF_EXR_PIZ } RfExrCompression;
+
+typedef struct {
+    RfExrCompression compression;
+    int half; /* 0: 32-bit FLOAT channels (the default, exact); 1: 16-bit HALF (rounded) */
+} RfExrOptions;
+
+/* err gets one line "path: message" on failure. Status: RF_ERR_DOMAIN for bad arguments,
+ * RF_ERR_IO for a file that cannot be opened, read or written, RF_ERR_PARSE for a corrupt or
+ * unsupported file, RF_ERR_NOMEM. A writer never leaves a partial file under the target name
+ * (it writes "<path>.XXXXXX" in the same folder, then renames); a new file gets mode 0644, a
+ * replaced one keeps its mode. */
+/* 1, 3 or 4 channels give grey, RGB or RGBA. Alpha is quantised without the curve (PNG alpha is
+ * linear). The file says how it is encoded: gAMA 1/gamma for RF_PNG_GAMMA, sRGB (with gAMA and
+ * cHRM) for RF_PNG_SRGB, nothing for RF_PNG_AS_IS. */
 RfStatus rf_png_write(const char *path, const RfImage *img, RfPngOptions opt, char *err, size_t err_size);
+/* Channels R,G,B(,A), or Y for a one-channel image, as 32-bit FLOAT with ZIP compression; each
+ * attribute is stored as a string attribute of the header (names must not be EXR's own, such as
+ * "channels" or "compression"). */
 RfStatus rf_exr_write(const char *path, const RfImage *img, const RfImageAttr *attrs, int nattrs,
                       char *err, size_t err_size);
+RfStatus rf_exr_write_opts(const char *path, const RfImage *img, const RfImageAttr *attrs, int nattrs,
+                           RfExrOptions opt, char *err, size_t err_size);
 /* Reads an EXR (as float, linear) or a PNG (decoded with the given options' inverse curve into
- * linear floats), chosen by the file's signature. */
+ * linear floats), chosen by the file's signature. On failure *img is empty (data NULL). */
 RfStatus rf_image_read(const char *path, RfPngOptions png_decode, RfImage *img, char *err, size_t err_size);
+
+/* The readers behind rf_image_read. EXR: the first part, scanline storage (tiled and deep files
+ * are refused), every standard compression, HALF/FLOAT/UINT channels converted to float; R,G,B(,A) give 3
+ * (4) channels, Y alone 1, Y with A 4 (Y copied to R, G, B). The data window becomes the image.
+ * PNG: any colour type and depth; palette and grey+alpha become RGB(A); alpha is never curved
+ * (PNG alpha is linear). */
+RfStatus rf_exr_read(const char *path, RfImage *img, char *err, size_t err_size);
+RfStatus rf_png_read(const char *path, RfPngOptions decode, RfImage *img, char *err, size_t err_size);
+
+/* A string attribute of an EXR's header: *value is malloc'd (free it). RF_ERR_DOMAIN with a
+ * message when the attribute is missing or not a string. */
+RfStatus rf_exr_read_attr(const char *path, const char *name, char **value, char *err, size_t err_size);
 
 #endif

@@ -1,0 +1,541 @@
+/* OpenEXR through OpenEXRCore's C API. Files are written through our own pwrite callback into
+ * the temporary file of rf_atomic_open and read through our own pread callback, so the context's
+ * user data is ours and the error handler can keep the library's message for err. */
+#include "io_internal.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* Included as <OpenEXR/...> rather than through pkg-config's -I/usr/include/OpenEXR: the headers
+ * then count as system headers, whose C11 anonymous unions -Wpedantic would reject in C99. */
+#include <OpenEXR/openexr.h>
+
+typedef struct {
+    int fd;
+    char msg[256]; /* the library's first error message */
+} ExrIo;
+
+static void exr_on_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
+{
+    void *ud = NULL;
+    if (exr_get_user_data(ctxt, &ud) == EXR_ERR_SUCCESS && ud) {
+        ExrIo *io = ud;
+        if (io->msg[0] == '\0')
+            snprintf(io->msg, sizeof io->msg, "%s", msg ? msg : exr_get_default_error_message(code));
+    }
+}
+
+static int64_t exr_pwrite(exr_const_context_t ctxt, void *ud, const void *buffer, uint64_t sz, uint64_t offset,
+                          exr_stream_error_func_ptr_t error_cb)
+{
+    ExrIo *io = ud;
+    const char *p = buffer;
+    uint64_t done = 0;
+    while (done < sz) {
+        size_t part = sz - done > (uint64_t)1 << 30 ? (size_t)1 << 30 : (size_t)(sz - done);
+        ssize_t n = pwrite(io->fd, p + done, part, (off_t)(offset + done));
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0) {
+            char msg[128];
+            if (n < 0 && strerror_r(errno, msg, sizeof msg) == 0)
+                error_cb(ctxt, EXR_ERR_WRITE_IO, "write failed: %s", msg);
+            else
+                error_cb(ctxt, EXR_ERR_WRITE_IO, "write failed");
+            return -1;
+        }
+        done += (uint64_t)n;
+    }
+    return (int64_t)done;
+}
+
+/* A short count at the end of the file is not an error here: the library reports the missing bytes. */
+static int64_t exr_pread(exr_const_context_t ctxt, void *ud, void *buffer, uint64_t sz, uint64_t offset,
+                         exr_stream_error_func_ptr_t error_cb)
+{
+    ExrIo *io = ud;
+    char *p = buffer;
+    uint64_t done = 0;
+    while (done < sz) {
+        size_t part = sz - done > (uint64_t)1 << 30 ? (size_t)1 << 30 : (size_t)(sz - done);
+        ssize_t n = pread(io->fd, p + done, part, (off_t)(offset + done));
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0) {
+            char msg[128];
+            if (strerror_r(errno, msg, sizeof msg) == 0)
+                error_cb(ctxt, EXR_ERR_READ_IO, "read failed: %s", msg);
+            else
+                error_cb(ctxt, EXR_ERR_READ_IO, "read failed");
+            return -1;
+        }
+        if (n == 0)
+            break;
+        done += (uint64_t)n;
+    }
+    return (int64_t)done;
+}
+
+static int64_t exr_size(exr_const_context_t ctxt, void *ud)
+{
+    ExrIo *io = ud;
+    struct stat st;
+    (void)ctxt;
+    return fstat(io->fd, &st) == 0 ? (int64_t)st.st_size : -1;
+}
+
+/* The library's message for a failed call, or the generic one for its code. */
+static const char *exr_msg(const ExrIo *io, exr_result_t rv)
+{
+    return io->msg[0] ? io->msg : exr_get_default_error_message(rv);
+}
+
+static RfStatus exr_status(exr_result_t rv)
+{
+    switch (rv) {
+    case EXR_ERR_OUT_OF_MEMORY: return RF_ERR_NOMEM;
+    case EXR_ERR_FILE_ACCESS:
+    case EXR_ERR_READ_IO:
+    case EXR_ERR_WRITE_IO: return RF_ERR_IO;
+    case EXR_ERR_INVALID_ARGUMENT:
+    case EXR_ERR_ARGUMENT_OUT_OF_RANGE:
+    case EXR_ERR_NAME_TOO_LONG:
+    case EXR_ERR_ATTR_TYPE_MISMATCH: return RF_ERR_DOMAIN;
+    default: return RF_ERR_PARSE;
+    }
+}
+
+/* ---- writing ---- */
+
+static const char *const rgba_names[4] = {"R", "G", "B", "A"};
+
+/* Index of an EXR channel name in our interleaved pixel, or -1. */
+static int channel_slot(const char *name, int channels)
+{
+    int c;
+    if (channels == 1)
+        return strcmp(name, "Y") == 0 ? 0 : -1;
+    for (c = 0; c < channels; c++)
+        if (strcmp(name, rgba_names[c]) == 0)
+            return c;
+    return -1;
+}
+
+static exr_result_t write_pixels(exr_context_t ctx, int part, const RfImage *img)
+{
+    exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+    exr_result_t rv;
+    int32_t lines;
+    int y, inited = 0, chosen = 0;
+    const int nc = img->channels;
+
+    rv = exr_get_scanlines_per_chunk(ctx, part, &lines);
+    for (y = 0; rv == EXR_ERR_SUCCESS && y < img->height; y += lines) {
+        exr_chunk_info_t ci;
+        int i;
+        rv = exr_write_scanline_chunk_info(ctx, part, y, &ci);
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        if (inited)
+            rv = exr_encoding_update(ctx, part, &ci, &enc);
+        else {
+            inited = 1; /* destroy even a half-initialised pipeline: it frees what is there */
+            rv = exr_encoding_initialize(ctx, part, &ci, &enc);
+        }
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        for (i = 0; i < enc.channel_count; i++) {
+            exr_coding_channel_info_t *ch = &enc.channels[i];
+            int c = channel_slot(ch->channel_name, nc);
+            if (c < 0) { /* cannot happen: we declared the channels */
+                rv = EXR_ERR_INVALID_ARGUMENT;
+                break;
+            }
+            ch->user_bytes_per_element = (int16_t)sizeof(float);
+            ch->user_data_type = EXR_PIXEL_FLOAT;
+            ch->user_pixel_stride = (int32_t)(nc * sizeof(float));
+            ch->user_line_stride = (int32_t)((size_t)img->width * (size_t)nc * sizeof(float));
+            ch->encode_from_ptr =
+                (const uint8_t *)(img->data + ((size_t)(ci.start_y) * (size_t)img->width) * (size_t)nc + (size_t)c);
+        }
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        if (!chosen) {
+            chosen = 1;
+            rv = exr_encoding_choose_default_routines(ctx, part, &enc);
+            if (rv != EXR_ERR_SUCCESS)
+                break;
+        }
+        rv = exr_encoding_run(ctx, part, &enc);
+    }
+    if (inited) {
+        exr_result_t drv = exr_encoding_destroy(ctx, &enc);
+        if (rv == EXR_ERR_SUCCESS)
+            rv = drv;
+    }
+    return rv;
+}
+
+RfStatus rf_exr_write(const char *path, const RfImage *img, const RfImageAttr *attrs, int nattrs, char *err,
+                      size_t err_size)
+{
+    RfExrOptions opt = {RF_EXR_ZIP, 0};
+    return rf_exr_write_opts(path, img, attrs, nattrs, opt, err, err_size);
+}
+
+RfStatus rf_exr_write_opts(const char *path, const RfImage *img, const RfImageAttr *attrs, int nattrs,
+                           RfExrOptions opt, char *err, size_t err_size)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    exr_context_t ctx = NULL;
+    exr_compression_t comp;
+    exr_result_t rv;
+    RfAtomicFile f;
+    ExrIo io;
+    RfStatus st;
+    int part = 0, c, i, long_names = 0;
+
+    st = rf_io_check_image(img, path, err, err_size);
+    if (st != RF_OK)
+        return st;
+    switch (opt.compression) {
+    case RF_EXR_ZIP: comp = EXR_COMPRESSION_ZIP; break;
+    case RF_EXR_NONE: comp = EXR_COMPRESSION_NONE; break;
+    case RF_EXR_PIZ: comp = EXR_COMPRESSION_PIZ; break;
+    default: return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "unknown EXR compression %d", (int)opt.compression);
+    }
+    /* The coding pipeline's line stride is an int32_t. */
+    if ((size_t)img->width * (size_t)img->channels * sizeof(float) > INT32_MAX)
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "image too wide for EXR (%d pixels)", img->width);
+    if (nattrs < 0 || (nattrs > 0 && !attrs))
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "bad attribute list");
+    for (i = 0; i < nattrs; i++) {
+        if (!attrs[i].name || !attrs[i].name[0] || !attrs[i].value)
+            return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "attribute %d has no name or no value", i);
+        if (strlen(attrs[i].name) > 31) /* EXR's short-name limit; longer names set a version flag */
+            long_names = 1;
+    }
+
+    st = rf_atomic_open(&f, path, err, err_size);
+    if (st != RF_OK)
+        return st;
+    memset(&io, 0, sizeof io);
+    io.fd = f.fd;
+    init.error_handler_fn = exr_on_error;
+    init.user_data = &io;
+    init.write_fn = exr_pwrite;
+
+    rv = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_initialize_required_attr_simple(ctx, part, img->width, img->height, comp);
+    /* Linear-light data is "perceptually logarithmic" in EXR's terms (pLinear = 0, as the C++
+     * library's default); it only matters to B44. */
+    for (c = 0; rv == EXR_ERR_SUCCESS && c < img->channels; c++)
+        rv = exr_add_channel(ctx, part, img->channels == 1 ? "Y" : rgba_names[c],
+                             opt.half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+    if (rv == EXR_ERR_SUCCESS && long_names)
+        rv = exr_set_longname_support(ctx, 1);
+    for (i = 0; rv == EXR_ERR_SUCCESS && i < nattrs; i++) {
+        rv = exr_attr_set_string(ctx, part, attrs[i].name, attrs[i].value);
+        if (rv != EXR_ERR_SUCCESS && !io.msg[0])
+            snprintf(io.msg, sizeof io.msg, "attribute \"%s\": %s", attrs[i].name,
+                     exr_get_default_error_message(rv));
+    }
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_write_header(ctx);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = write_pixels(ctx, part, img);
+    if (ctx) {
+        exr_result_t frv = exr_finish(&ctx); /* writes the chunk offset table */
+        if (rv == EXR_ERR_SUCCESS)
+            rv = frv;
+    }
+    if (rv != EXR_ERR_SUCCESS) {
+        rf_atomic_abort(&f);
+        return rf_io_fail(exr_status(rv), err, err_size, path, "cannot write EXR: %s", exr_msg(&io, rv));
+    }
+    return rf_atomic_commit(&f, err, err_size);
+}
+
+/* ---- reading ---- */
+
+/* Opens path for reading with our callbacks; on failure fills err and leaves *ctx NULL. */
+static RfStatus exr_open(const char *path, ExrIo *io, exr_context_t *ctx, char *err, size_t err_size)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    exr_result_t rv;
+
+    *ctx = NULL;
+    memset(io, 0, sizeof *io);
+    if (!path)
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no input path");
+    io->fd = open(path, O_RDONLY);
+    if (io->fd < 0)
+        return rf_io_fail_errno(RF_ERR_IO, err, err_size, path, "cannot open", errno);
+    init.error_handler_fn = exr_on_error;
+    init.user_data = io;
+    init.read_fn = exr_pread;
+    init.size_fn = exr_size;
+    rv = exr_start_read(ctx, path, &init);
+    if (rv != EXR_ERR_SUCCESS) {
+        if (*ctx)
+            exr_finish(ctx);
+        *ctx = NULL;
+        close(io->fd);
+        io->fd = -1;
+        return rf_io_fail(exr_status(rv) == RF_ERR_IO ? RF_ERR_IO : RF_ERR_PARSE, err, err_size, path,
+                          "not a readable EXR: %s", exr_msg(io, rv));
+    }
+    return RF_OK;
+}
+
+static void exr_close(ExrIo *io, exr_context_t *ctx)
+{
+    if (*ctx)
+        exr_finish(ctx);
+    *ctx = NULL;
+    if (io->fd >= 0)
+        close(io->fd);
+    io->fd = -1;
+}
+
+/* Where a file's channel goes in our interleaved pixel, or -1 to skip it. */
+static int read_slot(const char *name, int y_only, int nc)
+{
+    if (!name)
+        return -1;
+    if (strcmp(name, "A") == 0)
+        return nc == 4 ? 3 : -1;
+    if (y_only)
+        return strcmp(name, "Y") == 0 ? 0 : -1;
+    return channel_slot(name, 3);
+}
+
+/* Decodes part 0 (scanline) into img, whose size matches the data window dw.
+ * Each channel is decoded into its own plane of a scratch buffer, then interleaved here: with
+ * interleaved output pointers, OpenEXRCore 3.1's HALF-to-FLOAT fast path for four channels
+ * (chosen when the pointers run opposite to the file's alphabetical A,B,G,R order) puts the
+ * channels in reverse order. Planes take the generic, order-independent unpacker. */
+static exr_result_t read_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw, int y_only, RfImage *img)
+{
+    exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
+    exr_result_t rv;
+    int32_t lines;
+    int64_t y;
+    int inited = 0, chosen = 0;
+    const int nc = img->channels;
+    const size_t w = (size_t)img->width;
+    float *planes = NULL;
+    size_t plane_size = 0;
+
+    rv = exr_get_scanlines_per_chunk(ctx, 0, &lines);
+    if (rv == EXR_ERR_SUCCESS && (lines < 1 || (size_t)lines > RF_IMAGE_MAX_PIXELS / w))
+        rv = EXR_ERR_FILE_BAD_HEADER;
+    if (rv == EXR_ERR_SUCCESS) {
+        plane_size = w * (size_t)lines;
+        planes = malloc(plane_size * (size_t)nc * sizeof(float));
+        if (!planes)
+            rv = EXR_ERR_OUT_OF_MEMORY;
+    }
+    for (y = dw->min.y; rv == EXR_ERR_SUCCESS && y <= dw->max.y; y += lines) {
+        exr_chunk_info_t ci;
+        size_t row0, r, x;
+        int i, c;
+        rv = exr_read_scanline_chunk_info(ctx, 0, (int)y, &ci);
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        if (ci.start_y < dw->min.y || ci.height < 1 || ci.height > lines || ci.width != img->width ||
+            (int64_t)ci.start_y + ci.height - 1 > dw->max.y) {
+            rv = EXR_ERR_CORRUPT_CHUNK;
+            break;
+        }
+        if (inited)
+            rv = exr_decoding_update(ctx, 0, &ci, &dec);
+        else {
+            inited = 1;
+            rv = exr_decoding_initialize(ctx, 0, &ci, &dec);
+        }
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        for (i = 0; i < dec.channel_count; i++) {
+            exr_coding_channel_info_t *ch = &dec.channels[i];
+            c = read_slot(ch->channel_name, y_only, nc);
+            if (c < 0) {
+                ch->decode_to_ptr = NULL;
+                continue;
+            }
+            ch->user_bytes_per_element = (int16_t)sizeof(float);
+            ch->user_data_type = EXR_PIXEL_FLOAT;
+            ch->user_pixel_stride = (int32_t)sizeof(float);
+            ch->user_line_stride = (int32_t)(w * sizeof(float));
+            ch->decode_to_ptr = (uint8_t *)(planes + (size_t)c * plane_size);
+        }
+        if (!chosen) {
+            chosen = 1;
+            rv = exr_decoding_choose_default_routines(ctx, 0, &dec);
+            if (rv != EXR_ERR_SUCCESS)
+                break;
+        }
+        rv = exr_decoding_run(ctx, 0, &dec);
+        if (rv != EXR_ERR_SUCCESS)
+            break;
+        row0 = (size_t)(ci.start_y - dw->min.y);
+        for (c = 0; c < nc; c++) {
+            const float *src = planes + (size_t)c * plane_size;
+            if (y_only && (c == 1 || c == 2))
+                src = planes; /* grey with alpha: Y to R, G, B */
+            for (r = 0; r < (size_t)ci.height; r++) {
+                float *dst = img->data + (row0 + r) * w * (size_t)nc + (size_t)c;
+                for (x = 0; x < w; x++)
+                    dst[x * (size_t)nc] = src[r * w + x];
+            }
+        }
+    }
+    if (inited) {
+        exr_result_t drv = exr_decoding_destroy(ctx, &dec);
+        if (rv == EXR_ERR_SUCCESS)
+            rv = drv;
+    }
+    free(planes);
+    return rv;
+}
+
+RfStatus rf_exr_read(const char *path, RfImage *img, char *err, size_t err_size)
+{
+    const exr_attr_chlist_t *chl = NULL;
+    exr_attr_box2i_t dw;
+    exr_storage_t storage;
+    exr_context_t ctx;
+    exr_result_t rv;
+    ExrIo io;
+    RfStatus st;
+    int64_t w, h;
+    int idx_r = -1, idx_g = -1, idx_b = -1, idx_a = -1, idx_y = -1, nc, i, y_only;
+
+    if (!img)
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no image to read into");
+    img->width = img->height = img->channels = 0;
+    img->data = NULL;
+    st = exr_open(path, &io, &ctx, err, err_size);
+    if (st != RF_OK)
+        return st;
+
+    rv = exr_get_storage(ctx, 0, &storage);
+    if (rv != EXR_ERR_SUCCESS) {
+        st = rf_io_fail(RF_ERR_PARSE, err, err_size, path, "bad EXR header: %s", exr_msg(&io, rv));
+        goto done;
+    }
+    if (storage != EXR_STORAGE_SCANLINE) {
+        st = rf_io_fail(RF_ERR_PARSE, err, err_size, path, "%s EXR files are not supported (only scanline images)",
+                        storage == EXR_STORAGE_TILED ? "tiled" : "deep");
+        goto done;
+    }
+    rv = exr_get_channels(ctx, 0, &chl);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_get_data_window(ctx, 0, &dw);
+    if (rv != EXR_ERR_SUCCESS || !chl) {
+        st = rf_io_fail(RF_ERR_PARSE, err, err_size, path, "bad EXR header: %s", exr_msg(&io, rv));
+        goto done;
+    }
+    for (i = 0; i < chl->num_channels; i++) {
+        const exr_attr_chlist_entry_t *e = &chl->entries[i];
+        const char *n = e->name.str;
+        int *dst = NULL;
+        if (!n)
+            continue;
+        if (strcmp(n, "R") == 0)
+            dst = &idx_r;
+        else if (strcmp(n, "G") == 0)
+            dst = &idx_g;
+        else if (strcmp(n, "B") == 0)
+            dst = &idx_b;
+        else if (strcmp(n, "A") == 0)
+            dst = &idx_a;
+        else if (strcmp(n, "Y") == 0)
+            dst = &idx_y;
+        if (!dst)
+            continue;
+        if (e->x_sampling != 1 || e->y_sampling != 1) {
+            st = rf_io_fail(RF_ERR_PARSE, err, err_size, path, "subsampled EXR channel %s is not supported", n);
+            goto done;
+        }
+        *dst = i;
+    }
+    y_only = !(idx_r >= 0 && idx_g >= 0 && idx_b >= 0);
+    if (y_only && idx_y < 0) {
+        st = rf_io_fail(RF_ERR_PARSE, err, err_size, path, "EXR has neither R, G, B nor Y channels");
+        goto done;
+    }
+    nc = y_only ? (idx_a >= 0 ? 4 : 1) : (idx_a >= 0 ? 4 : 3);
+
+    w = (int64_t)dw.max.x - dw.min.x + 1;
+    h = (int64_t)dw.max.y - dw.min.y + 1;
+    if (w <= 0 || h <= 0 || w > INT32_MAX || h > INT32_MAX ||
+        rf_image_alloc(img, (int)w, (int)h, nc) == RF_ERR_DOMAIN) {
+        st = rf_io_fail(RF_ERR_PARSE, err, err_size, path, "unsupported EXR data window %lldx%lld", (long long)w,
+                        (long long)h);
+        goto done;
+    }
+    if (!img->data) {
+        st = rf_io_fail(RF_ERR_NOMEM, err, err_size, path, "out of memory for %lldx%lld pixels", (long long)w,
+                        (long long)h);
+        goto done;
+    }
+    if ((size_t)img->width * sizeof(float) > INT32_MAX) { /* the pipeline's line stride is an int32_t */
+        st = rf_io_fail(RF_ERR_PARSE, err, err_size, path, "EXR too wide (%d pixels)", img->width);
+        goto done;
+    }
+    rv = read_pixels(ctx, &dw, y_only, img);
+    if (rv != EXR_ERR_SUCCESS) {
+        st = rf_io_fail(exr_status(rv) == RF_ERR_NOMEM ? RF_ERR_NOMEM : RF_ERR_PARSE, err, err_size, path,
+                        "cannot decode EXR pixels: %s", exr_msg(&io, rv));
+        goto done;
+    }
+    st = RF_OK;
+done:
+    if (st != RF_OK)
+        rf_image_free(img);
+    exr_close(&io, &ctx);
+    return st;
+}
+
+RfStatus rf_exr_read_attr(const char *path, const char *name, char **value, char *err, size_t err_size)
+{
+    exr_context_t ctx;
+    exr_result_t rv;
+    const char *s = NULL;
+    int32_t len = 0;
+    ExrIo io;
+    RfStatus st;
+
+    if (!value || !name)
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no attribute name or result");
+    *value = NULL;
+    st = exr_open(path, &io, &ctx, err, err_size);
+    if (st != RF_OK)
+        return st;
+    rv = exr_attr_get_string(ctx, 0, name, &len, &s);
+    if (rv == EXR_ERR_NO_ATTR_BY_NAME)
+        st = rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no attribute \"%s\"", name);
+    else if (rv == EXR_ERR_ATTR_TYPE_MISMATCH)
+        st = rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "attribute \"%s\" is not a string", name);
+    else if (rv != EXR_ERR_SUCCESS || len < 0 || (len > 0 && !s))
+        st = rf_io_fail(RF_ERR_PARSE, err, err_size, path, "cannot read attribute \"%s\": %s", name,
+                        exr_msg(&io, rv));
+    else if (!(*value = malloc((size_t)len + 1)))
+        st = rf_io_fail(RF_ERR_NOMEM, err, err_size, path, "out of memory");
+    else {
+        if (len > 0)
+            memcpy(*value, s, (size_t)len);
+        (*value)[len] = '\0';
+    }
+    exr_close(&io, &ctx);
+    return st;
+}

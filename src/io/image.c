@@ -1,0 +1,211 @@
+/* Float images: allocation, reading by signature, and the write-then-rename helper. */
+#include "io_internal.h"
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+RfStatus rf_io_fail(RfStatus status, char *err, size_t err_size, const char *path, const char *fmt, ...)
+{
+    if (err && err_size > 0) {
+        int n = snprintf(err, err_size, "%s: ", path ? path : "(null)");
+        if (n >= 0 && (size_t)n < err_size) {
+            va_list ap;
+            va_start(ap, fmt);
+            vsnprintf(err + n, err_size - (size_t)n, fmt, ap);
+            va_end(ap);
+        }
+    }
+    return status;
+}
+
+RfStatus rf_io_fail_errno(RfStatus status, char *err, size_t err_size, const char *path, const char *what,
+                          int errnum)
+{
+    char msg[256];
+    if (strerror_r(errnum, msg, sizeof msg) != 0) /* XSI strerror_r: strerror() is not thread-safe */
+        snprintf(msg, sizeof msg, "error %d", errnum);
+    return rf_io_fail(status, err, err_size, path, "%s: %s", what, msg);
+}
+
+/* Pixel count of a width x height image, or 0 when the size is not acceptable. */
+static size_t checked_pixels(int width, int height)
+{
+    if (width <= 0 || height <= 0)
+        return 0;
+    if ((size_t)width > RF_IMAGE_MAX_PIXELS / (size_t)height)
+        return 0;
+    return (size_t)width * (size_t)height;
+}
+
+RfStatus rf_image_alloc(RfImage *img, int width, int height, int channels)
+{
+    size_t pixels = checked_pixels(width, height);
+    if (!img)
+        return RF_ERR_DOMAIN;
+    img->width = img->height = img->channels = 0;
+    img->data = NULL;
+    if (pixels == 0 || (channels != 1 && channels != 3 && channels != 4))
+        return RF_ERR_DOMAIN;
+    /* RF_IMAGE_MAX_PIXELS * 4 * sizeof(float) fits any 64-bit size_t; check anyway for 32-bit. */
+    if (pixels > SIZE_MAX / sizeof(float) / (size_t)channels)
+        return RF_ERR_NOMEM;
+    img->data = calloc(pixels * (size_t)channels, sizeof(float));
+    if (!img->data)
+        return RF_ERR_NOMEM;
+    img->width = width;
+    img->height = height;
+    img->channels = channels;
+    return RF_OK;
+}
+
+void rf_image_free(RfImage *img)
+{
+    if (!img)
+        return;
+    free(img->data);
+    img->data = NULL;
+    img->width = img->height = img->channels = 0;
+}
+
+RfStatus rf_io_check_image(const RfImage *img, const char *path, char *err, size_t err_size)
+{
+    if (!path)
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no output path");
+    if (!img || !img->data)
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no image data to write");
+    if (img->channels != 1 && img->channels != 3 && img->channels != 4)
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "unsupported channel count %d (1, 3 or 4)",
+                          img->channels);
+    if (checked_pixels(img->width, img->height) == 0)
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "unsupported image size %dx%d", img->width,
+                          img->height);
+    return RF_OK;
+}
+
+/* ---- reading ---- */
+
+RfStatus rf_image_read(const char *path, RfPngOptions png_decode, RfImage *img, char *err, size_t err_size)
+{
+    static const unsigned char exr_magic[4] = {0x76, 0x2f, 0x31, 0x01};
+    static const unsigned char png_magic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    unsigned char sig[8];
+    size_t n;
+    FILE *fp;
+
+    if (!img)
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no image to read into");
+    img->width = img->height = img->channels = 0;
+    img->data = NULL;
+    if (!path)
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no input path");
+    fp = fopen(path, "rb");
+    if (!fp)
+        return rf_io_fail_errno(RF_ERR_IO, err, err_size, path, "cannot open", errno);
+    n = fread(sig, 1, sizeof sig, fp);
+    if (n < sizeof sig && ferror(fp)) {
+        int e = errno;
+        fclose(fp);
+        return rf_io_fail_errno(RF_ERR_IO, err, err_size, path, "cannot read", e);
+    }
+    fclose(fp);
+    if (n >= sizeof exr_magic && memcmp(sig, exr_magic, sizeof exr_magic) == 0)
+        return rf_exr_read(path, img, err, err_size);
+    if (n == sizeof png_magic && memcmp(sig, png_magic, sizeof png_magic) == 0)
+        return rf_png_read(path, png_decode, img, err, err_size);
+    return rf_io_fail(RF_ERR_PARSE, err, err_size, path, "not an OpenEXR or PNG file (unknown signature)");
+}
+
+/* ---- atomic writes ---- */
+
+RfStatus rf_atomic_open(RfAtomicFile *f, const char *path, char *err, size_t err_size)
+{
+    static const char suffix[] = ".XXXXXX";
+    size_t len = strlen(path);
+    struct stat st;
+    mode_t mode = 0644;
+
+    f->path = path;
+    f->fd = -1;
+    f->fp = NULL;
+    f->tmp = malloc(len + sizeof suffix);
+    if (!f->tmp)
+        return rf_io_fail(RF_ERR_NOMEM, err, err_size, path, "out of memory");
+    /* "<path>.XXXXXX" lies in the target's folder, so the final rename() stays on one file system. */
+    memcpy(f->tmp, path, len);
+    memcpy(f->tmp + len, suffix, sizeof suffix);
+    f->fd = mkstemp(f->tmp);
+    if (f->fd < 0) {
+        int e = errno;
+        free(f->tmp);
+        f->tmp = NULL;
+        return rf_io_fail_errno(RF_ERR_IO, err, err_size, path, "cannot create a temporary file next to it", e);
+    }
+    /* mkstemp creates 0600. Keep a replaced file's permissions; a new file gets 0644 (reading
+     * the umask would need umask(), which changes process state and is not thread-safe). */
+    if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
+        mode = st.st_mode & 07777;
+    if (fchmod(f->fd, mode) != 0) {
+        int e = errno;
+        rf_atomic_abort(f);
+        return rf_io_fail_errno(RF_ERR_IO, err, err_size, path, "cannot set the permissions", e);
+    }
+    return RF_OK;
+}
+
+RfStatus rf_atomic_stdio(RfAtomicFile *f, char *err, size_t err_size)
+{
+    f->fp = fdopen(f->fd, "wb");
+    if (!f->fp)
+        return rf_io_fail_errno(RF_ERR_IO, err, err_size, f->path, "cannot open a stream", errno);
+    return RF_OK;
+}
+
+void rf_atomic_abort(RfAtomicFile *f)
+{
+    if (f->fp)
+        fclose(f->fp);
+    else if (f->fd >= 0)
+        close(f->fd);
+    f->fp = NULL;
+    f->fd = -1;
+    if (f->tmp) {
+        unlink(f->tmp);
+        free(f->tmp);
+        f->tmp = NULL;
+    }
+}
+
+RfStatus rf_atomic_commit(RfAtomicFile *f, char *err, size_t err_size)
+{
+    int failed, e = 0;
+    if (f->fp) {
+        failed = fflush(f->fp) != 0 || ferror(f->fp);
+        e = errno;
+        if (fclose(f->fp) != 0 && !failed) {
+            failed = 1;
+            e = errno;
+        }
+    } else {
+        failed = close(f->fd) != 0;
+        e = errno;
+    }
+    f->fp = NULL;
+    f->fd = -1;
+    if (failed) {
+        rf_atomic_abort(f);
+        return rf_io_fail_errno(RF_ERR_IO, err, err_size, f->path, "cannot write", e ? e : EIO);
+    }
+    if (rename(f->tmp, f->path) != 0) {
+        e = errno;
+        rf_atomic_abort(f);
+        return rf_io_fail_errno(RF_ERR_IO, err, err_size, f->path, "cannot rename the temporary file to it", e);
+    }
+    free(f->tmp);
+    f->tmp = NULL;
+    return RF_OK;
+}

@@ -1,0 +1,42 @@
+/* refray: helpers shared by the image writers and readers (not part of the public API). */
+#ifndef REFRAY_IO_INTERNAL_H
+#define REFRAY_IO_INTERNAL_H
+
+#include <stdio.h>
+
+#include "refray/image.h"
+
+/* printf-style "path: message" into err (if err and err_size allow); returns status. */
+RfStatus rf_io_fail(RfStatus status, char *err, size_t err_size, const char *path, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
+
+/* "path: what: strerror(errnum)"; thread-safe (strerror_r). */
+RfStatus rf_io_fail_errno(RfStatus status, char *err, size_t err_size, const char *path, const char *what,
+                          int errnum);
+
+/* Validates width/height/channels/data of an image to be written. */
+RfStatus rf_io_check_image(const RfImage *img, const char *path, char *err, size_t err_size);
+
+/* A file being written under a temporary name in the target's folder. Either fd is written
+ * directly, or the caller wraps it in fp (rf_atomic_stdio) and writes through stdio. */
+typedef struct {
+    const char *path; /* the target */
+    char *tmp;        /* the temporary file's name (malloc'd) */
+    int fd;
+    FILE *fp;
+} RfAtomicFile;
+
+/* Creates the temporary file (mkstemp) next to path. */
+RfStatus rf_atomic_open(RfAtomicFile *f, const char *path, char *err, size_t err_size);
+/* Wraps the descriptor in a stdio stream (f->fp). */
+RfStatus rf_atomic_stdio(RfAtomicFile *f, char *err, size_t err_size);
+/* Flushes and closes the temporary file, then renames it over the target. On failure the
+ * temporary file is removed and the target is untouched. Always releases f. */
+RfStatus rf_atomic_commit(RfAtomicFile *f, char *err, size_t err_size);
+/* Closes and removes the temporary file; the target is untouched. Safe to call twice. */
+void rf_atomic_abort(RfAtomicFile *f);
+
+#endif
