@@ -15,4 +15,12 @@
  * transforms while rejecting any genuine non-uniform scale or shear. */
 #define RF_STRUCTURE_TOL 1e-12
 
+/* Grazing transmission (§3.8.1): sin^2(theta_t) = (eta_i/eta_t)^2 sin^2(theta_i) is computed
+ * with a relative error of a few ulps (the degree-to-radian conversion, sin or 1 - cos^2, the
+ * ratio, the squares), so an incidence given exactly at the critical angle can come out as
+ * 1 + 1e-15. FORMULAS.md pins "total internal reflection only beyond the critical angle": a
+ * value up to 1 + RF_TIR_SLACK counts as grazing (theta_t = 90 deg, cos_t = 0). 1e-14 is ~45
+ * ulps of 1; for eta_i/eta_t = 1.5 it shifts the TIR onset by under 5e-15 rad. */
+#define RF_TIR_SLACK 1e-14
+
 #endif

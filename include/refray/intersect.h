@@ -1,0 +1,98 @@
+/* refray: ray/primitive intersection (§3.5) for the tracer's hot path.
+ *
+ * Every rf_intersect_* takes the ray and the primitive by value and an interval [t_min, t_max)
+ * (t in units of |dir|; t_min inclusive so that t_min = 0 accepts a hit at the origin, t_max
+ * exclusive so that a shadow ray to a light at t_max does not hit the light's own point). It
+ * returns 1 and fills *hit when the nearest hit in the interval exists, otherwise returns 0 and
+ * leaves *hit untouched, so the tracer can keep its closest hit and pass t_max = closest.t.
+ * Directions must be non-zero (rf_intersect_* never divide by |dir|; a zero direction gives no
+ * hit). No tolerances: parallel means an exactly zero denominator; the self-intersection offset
+ * is the caller's business (numeric.h). NaN inputs give no hit. */
+#ifndef REFRAY_INTERSECT_H
+#define REFRAY_INTERSECT_H
+
+#include "refray/ray.h"
+#include "refray/vec.h"
+
+typedef struct {
+    double t;
+    double l[3];   /* triangles: barycentric coordinates of the hit for p1, p2, p3; else 0 */
+    RfVec3 normal; /* unit geometric normal at the hit, see each primitive for its side */
+} RfHit;
+
+/* ---- §3.5.1 sphere ---- */
+
+typedef struct { RfVec3 center; double radius; } RfSphere; /* radius > 0 */
+
+typedef enum {
+    RF_SPHERE_SCRIPT, /* the script's quadratic a t^2 + b t + c, D = b^2 - 4ac, midnight formula */
+    RF_SPHERE_STABLE  /* same roots, precise: D = 4a (r - |v|)(r + |v|), v = f - (<f,d>/a) d
+                       * (the perpendicular distance, Ray Tracing Gems ch. 7 / pbrt-v4); c by a
+                       * compensated dot product; q = -(b + sign(b) sqrt(D))/2, roots q/a, c/q */
+} RfSphereMethod;
+
+/* The quadratic of §3.5.1 with f = e - center: a = <d,d>, b = 2<d,f>, c = <f,f> - r^2, its
+ * discriminant and roots t1 <= t2 (D = 0: t1 = t2, the tangent). roots = 0 when D < 0. */
+typedef struct { double a, b, c, disc, t1, t2; int roots; } RfSphereQuadratic;
+RfSphereQuadratic rf_sphere_quadratic(RfRay ray, RfSphere s, RfSphereMethod method);
+
+/* The smallest root in [t_min, t_max): t1 when the origin is outside, t2 when inside (t1 < 0
+ * is behind); a tangent (D = 0) counts as a hit. normal = (p - center)/radius, outward; the
+ * stable method computes p - center as v -+ (sqrt(D/4)/a) d, exact to a few ulps even where
+ * t is large and e + t d - center would cancel. */
+int rf_intersect_sphere(RfRay ray, RfSphere s, RfSphereMethod method, double t_min, double t_max,
+                        RfHit *hit);
+
+/* ---- §3.5.2 plane in Hesse form <x, normal> = offset (normal need not be unit) ---- */
+
+typedef struct { RfVec3 normal; double offset; } RfPlane;
+
+/* t = (offset - <e,n>) / <d,n> of the whole line; returns 0 (t untouched) when <d,n> = 0
+ * exactly: the ray is parallel (a ray inside the plane counts as parallel, no hit). */
+int rf_plane_line_t(RfRay ray, RfPlane p, double *t);
+/* normal = normal/|normal| (the given side, not flipped towards the ray). */
+int rf_intersect_plane(RfRay ray, RfPlane p, double t_min, double t_max, RfHit *hit);
+
+/* ---- §3.5.3 triangles, two-sided ---- */
+
+typedef struct { RfVec3 p1, p2, p3; } RfTriangle;
+
+typedef enum {
+    RF_TRIANGLE_SCRIPT,    /* §3.5.3: plane through the triangle, then barycentric >= 0 */
+    RF_TRIANGLE_MOLLER,    /* Moller-Trumbore 1997 */
+    RF_TRIANGLE_WATERTIGHT /* Woop, Benthin, Wald 2013 (JCGT 2(1)), with exact edge signs */
+} RfTriangleMethod;
+
+/* The watertight test's per-ray set-up (axis permutation and shear), computed once per ray. */
+typedef struct {
+    RfRay ray;
+    int kx, ky, kz;
+    double sx, sy, sz;
+} RfWatertightRay;
+RfWatertightRay rf_watertight_ray(RfRay ray);
+
+/* All three: a hit has l1, l2, l3 >= 0 (edges and vertices included) and t in [t_min, t_max);
+ * normal = normalise((p2 - p1) x (p3 - p1)) (counter-clockwise side), not flipped to the ray.
+ * A degenerate (zero-area) triangle and a ray parallel to the triangle's plane never hit.
+ * Only the watertight method guarantees that a ray through a shared edge or vertex of a
+ * closed mesh hits at least one of the triangles (it may report both, with equal t). */
+int rf_intersect_triangle(RfRay ray, RfTriangle tri, RfTriangleMethod method, double t_min,
+                          double t_max, RfHit *hit);
+int rf_intersect_triangle_watertight(const RfWatertightRay *wr, RfTriangle tri, double t_min,
+                                     double t_max, RfHit *hit);
+
+/* ---- NFF `c`: open cone or cylinder (no caps) between base and apex ---- */
+
+/* Radii >= 0, not both 0; base != apex. Equal radii: a cylinder. NFF's negative pair (visible
+ * from inside only) is passed as absolute values; the caller decides visibility with the
+ * outward normal. */
+typedef struct { RfVec3 base; double base_radius; RfVec3 apex; double apex_radius; } RfCone;
+
+/* The nearest hit of the lateral surface with axial position in [0, |apex - base|], from outside
+ * or inside (the far wall). A tangent ray counts (double root). A ray along a cylinder's axis or
+ * a cone's generator has no quadratic term: the single root of the linear equation is used; a
+ * ray running inside the surface does not hit. normal: outward (away from the axis, tilted by
+ * the slope); at a radius-0 tip it is taken along the axis. */
+int rf_intersect_cone(RfRay ray, RfCone cone, double t_min, double t_max, RfHit *hit);
+
+#endif

@@ -1,0 +1,347 @@
+/* Ray/primitive intersection (§3.5). See refray/intersect.h for the contract. */
+#include "refray/intersect.h"
+
+#include <math.h>
+
+#include "refray/geometry.h"
+
+static int in_range(double t, double t_min, double t_max)
+{
+    return t >= t_min && t < t_max; /* false for NaN */
+}
+
+/* Roots of a t^2 + 2 bh t + c = 0 (half-b form) from the quarter discriminant dq = bh^2 - ac,
+ * which the caller may compute more precisely than the formula. q = -(bh + sign(bh) sqrt(dq))
+ * adds two numbers of the same sign, so no cancellation; the roots are q/a and c/q (Vieta).
+ * Returns 0 (dq < 0 or no solution) or 1 with t[0] <= t[1]; a double root and the linear case
+ * (a = 0) give t[0] = t[1]. */
+static int solve_quadratic(double a, double bh, double c, double dq, double t[2])
+{
+    if (!(dq >= 0.0))
+        return 0;
+    double q = -(bh + copysign(sqrt(dq), bh));
+    if (q == 0.0) {          /* bh = 0 and dq = 0, so ac = 0 */
+        if (a == 0.0)        /* 0 = c: no equation left (a ray inside the surface) or none */
+            return 0;
+        t[0] = t[1] = 0.0;   /* c = 0: double root at 0 */
+        return 1;
+    }
+    if (a == 0.0) {          /* linear 2 bh t + c = 0; q = -2 bh */
+        t[0] = t[1] = c / q;
+        return 1;
+    }
+    if (dq == 0.0) {         /* tangent: one root, q/a = -bh/a */
+        t[0] = t[1] = q / a;
+        return 1;
+    }
+    double r1 = q / a, r2 = c / q;
+    t[0] = fmin(r1, r2);
+    t[1] = fmax(r1, r2);
+    return 1;
+}
+
+/* <f,f> - r^2 with error-free products and sums (Ogita, Rump, Oishi 2005, Dot2): accurate to
+ * about one rounding even when the origin lies near the sphere and the terms cancel. */
+static double dot_minus_square(RfVec3 f, double r)
+{
+    double h[4] = {f.x, f.y, f.z, r}, sgn[4] = {1.0, 1.0, 1.0, -1.0};
+    double s = 0.0, e = 0.0;
+    for (int i = 0; i < 4; i++) {
+        double p = sgn[i] * (h[i] * h[i]);
+        double pe = sgn[i] * fma(h[i], h[i], -(h[i] * h[i])); /* exact error of the square */
+        double q = s + p, z = q - s;                          /* TwoSum(s, p) */
+        e += ((s - (q - z)) + (p - z)) + pe;
+        s = q;
+    }
+    return s + e;
+}
+
+/* The stable form's pieces: f = e - center, a = <d,d>, bh = <d,f>, v = f - (bh/a) d (the
+ * centre's offset from the ray's closest point, v perpendicular to d) and the quarter
+ * discriminant D/4 = a (r - |v|)(r + |v|), which does not cancel the way b^2 - 4ac does for a
+ * far sphere (Ray Tracing Gems ch. 7, pbrt-v4). */
+typedef struct { RfVec3 f, v; double a, bh, dq; } SphereParts;
+
+static SphereParts sphere_parts(RfRay ray, RfSphere s)
+{
+    SphereParts p;
+    p.f = rf_vec3_sub(ray.origin, s.center);
+    p.a = rf_vec3_dot(ray.dir, ray.dir);
+    p.bh = rf_vec3_dot(ray.dir, p.f);
+    p.v = rf_vec3_sub(p.f, rf_vec3_scale(ray.dir, p.bh / p.a));
+    double lv = rf_vec3_length(p.v);
+    p.dq = p.a * ((s.radius - lv) * (s.radius + lv));
+    return p;
+}
+
+/* §3.5.1 */
+RfSphereQuadratic rf_sphere_quadratic(RfRay ray, RfSphere s, RfSphereMethod method)
+{
+    RfSphereQuadratic q;
+    RfVec3 f = rf_vec3_sub(ray.origin, s.center), d = ray.dir;
+    double t[2];
+    q.a = rf_vec3_dot(d, d);
+    q.b = 2.0 * rf_vec3_dot(d, f);
+    q.t1 = q.t2 = NAN;
+    q.roots = 0;
+    if (method == RF_SPHERE_SCRIPT) {
+        /* the script's midnight formula, its cases as written */
+        q.c = rf_vec3_dot(f, f) - s.radius * s.radius;
+        q.disc = q.b * q.b - 4.0 * q.a * q.c;
+        if (q.disc == 0.0) {
+            q.t1 = q.t2 = -q.b / (2.0 * q.a);
+            q.roots = 1;
+        } else if (q.disc > 0.0) {
+            double sq = sqrt(q.disc);
+            q.t1 = (-q.b - sq) / (2.0 * q.a); /* a > 0, so t1 < t2 */
+            q.t2 = (-q.b + sq) / (2.0 * q.a);
+            q.roots = 2;
+        }
+        return q;
+    }
+    SphereParts p = sphere_parts(ray, s);
+    q.c = dot_minus_square(f, s.radius);
+    q.disc = 4.0 * p.dq;
+    if (solve_quadratic(q.a, p.bh, q.c, p.dq, t)) {
+        q.t1 = t[0];
+        q.t2 = t[1];
+        q.roots = p.dq == 0.0 ? 1 : 2;
+    }
+    return q;
+}
+
+int rf_intersect_sphere(RfRay ray, RfSphere s, RfSphereMethod method, double t_min, double t_max,
+                        RfHit *hit)
+{
+    RfSphereQuadratic q = rf_sphere_quadratic(ray, s, method);
+    double t;
+    int far;
+    if (q.roots == 0)
+        return 0;
+    if (in_range(q.t1, t_min, t_max))
+        t = q.t1, far = 0;  /* the near side (origin outside) */
+    else if (in_range(q.t2, t_min, t_max))
+        t = q.t2, far = 1;  /* t1 behind or before t_min: origin inside, the far side */
+    else
+        return 0;
+    hit->t = t;
+    hit->l[0] = hit->l[1] = hit->l[2] = 0.0;
+    if (method == RF_SPHERE_SCRIPT) {
+        hit->normal = rf_vec3_scale(rf_vec3_sub(rf_ray_at(ray, t), s.center), 1.0 / s.radius);
+    } else {
+        /* p - center = f + t d = v -+ (sqrt(D/4)/a) d: no cancellation between a large t and
+         * the centre, so the normal of a far sphere keeps its digits (|v + x d| = r exactly) */
+        SphereParts p = sphere_parts(ray, s);
+        double off = sqrt(fmax(p.dq, 0.0)) / p.a;
+        hit->normal = rf_vec3_scale(rf_vec3_add(p.v, rf_vec3_scale(ray.dir, far ? off : -off)), 1.0 / s.radius);
+    }
+    return 1;
+}
+
+/* §3.5.2 (erratum: the script uses d for the direction and the plane offset; kept apart) */
+int rf_plane_line_t(RfRay ray, RfPlane p, double *t)
+{
+    double den = rf_vec3_dot(ray.dir, p.normal);
+    if (den == 0.0)
+        return 0;
+    *t = (p.offset - rf_vec3_dot(ray.origin, p.normal)) / den;
+    return 1;
+}
+
+int rf_intersect_plane(RfRay ray, RfPlane p, double t_min, double t_max, RfHit *hit)
+{
+    double t;
+    if (!rf_plane_line_t(ray, p, &t) || !in_range(t, t_min, t_max))
+        return 0; /* parallel, behind the origin (t < 0 <= t_min) or beyond t_max */
+    hit->t = t;
+    hit->l[0] = hit->l[1] = hit->l[2] = 0.0;
+    hit->normal = rf_vec3_normalize(p.normal);
+    return 1;
+}
+
+static RfVec3 triangle_unit_normal(RfTriangle tri)
+{
+    return rf_vec3_normalize(rf_vec3_cross(rf_vec3_sub(tri.p2, tri.p1), rf_vec3_sub(tri.p3, tri.p1)));
+}
+
+static void set_triangle_hit(RfHit *hit, RfTriangle tri, double t, double l1, double l2, double l3)
+{
+    hit->t = t;
+    hit->l[0] = l1;
+    hit->l[1] = l2;
+    hit->l[2] = l3;
+    hit->normal = triangle_unit_normal(tri);
+}
+
+/* §3.5.3 as in the script: the plane <x,n> = <p1,n> with n = (p2-p1) x (p3-p1), then the
+ * barycentric coordinates of the plane point (rf_barycentric, §2.4), inside iff all >= 0.
+ * Parallel rays and degenerate triangles miss; an edge or vertex point is inside (a zero
+ * coordinate), but rounding in the plane point may put it on either side. */
+static int triangle_script(RfRay ray, RfTriangle tri, double t_min, double t_max, RfHit *hit)
+{
+    RfVec3 n = rf_vec3_cross(rf_vec3_sub(tri.p2, tri.p1), rf_vec3_sub(tri.p3, tri.p1));
+    RfPlane plane = {n, rf_vec3_dot(tri.p1, n)};
+    double t, l[3];
+    if (!rf_plane_line_t(ray, plane, &t) || !in_range(t, t_min, t_max))
+        return 0;
+    if (rf_barycentric(tri.p1, tri.p2, tri.p3, rf_ray_at(ray, t), l) != RF_OK)
+        return 0;
+    if (!(l[0] >= 0.0 && l[1] >= 0.0 && l[2] >= 0.0))
+        return 0;
+    set_triangle_hit(hit, tri, t, l[0], l[1], l[2]);
+    return 1;
+}
+
+/* Moller-Trumbore: solve e + t d = p1 + u (p2-p1) + v (p3-p1) by Cramer's rule. det = 0
+ * exactly (parallel ray or degenerate triangle) misses; no epsilon, which would scale with the
+ * triangle's size. Comparisons are written so that NaN fails them. Edges and vertices are
+ * inside, but u, v are rounded independently for the two triangles of an edge, so a ray
+ * through a shared edge can miss both. */
+static int triangle_moller(RfRay ray, RfTriangle tri, double t_min, double t_max, RfHit *hit)
+{
+    RfVec3 e1 = rf_vec3_sub(tri.p2, tri.p1), e2 = rf_vec3_sub(tri.p3, tri.p1);
+    RfVec3 pv = rf_vec3_cross(ray.dir, e2);
+    double det = rf_vec3_dot(e1, pv);
+    if (det == 0.0)
+        return 0;
+    double inv = 1.0 / det;
+    RfVec3 tv = rf_vec3_sub(ray.origin, tri.p1);
+    double u = rf_vec3_dot(tv, pv) * inv;
+    if (!(u >= 0.0 && u <= 1.0))
+        return 0;
+    RfVec3 qv = rf_vec3_cross(tv, e1);
+    double v = rf_vec3_dot(ray.dir, qv) * inv;
+    if (!(v >= 0.0 && u + v <= 1.0))
+        return 0;
+    double t = rf_vec3_dot(e2, qv) * inv;
+    if (!in_range(t, t_min, t_max))
+        return 0;
+    set_triangle_hit(hit, tri, t, 1.0 - u - v, u, v);
+    return 1;
+}
+
+static double comp(RfVec3 a, int k) { return k == 0 ? a.x : k == 1 ? a.y : a.z; }
+
+/* Woop, Benthin, Wald 2013: the axis kz with the largest |d| becomes z (kx, ky swapped when
+ * d_kz < 0 to keep the winding), the shear (sx, sy, sz) maps d to (0, 0, 1). */
+RfWatertightRay rf_watertight_ray(RfRay ray)
+{
+    RfWatertightRay w;
+    double ax = fabs(ray.dir.x), ay = fabs(ray.dir.y), az = fabs(ray.dir.z);
+    w.ray = ray;
+    w.kz = ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
+    w.kx = (w.kz + 1) % 3;
+    w.ky = (w.kx + 1) % 3;
+    if (comp(ray.dir, w.kz) < 0.0) {
+        int k = w.kx;
+        w.kx = w.ky;
+        w.ky = k;
+    }
+    w.sx = comp(ray.dir, w.kx) / comp(ray.dir, w.kz);
+    w.sy = comp(ray.dir, w.ky) / comp(ray.dir, w.kz);
+    w.sz = 1.0 / comp(ray.dir, w.kz);
+    return w;
+}
+
+/* The 2D edge function e(P,Q) = Px Qy - Py Qx with its sign exact for the given doubles:
+ * rounding is monotone, so RN(Px Qy) != RN(Py Qx) already orders the exact products; when they
+ * round to the same double the exact difference is the difference of the two rounding errors,
+ * which fma gives exactly (barring underflow below 2^-969). Swapping P and Q negates the result
+ * exactly, so the two triangles of a shared edge see opposite signs and no ray slips between
+ * them (the property WBW get by re-evaluating in double; a double tracer has nothing wider). */
+static double edge_function(double px, double py, double qx, double qy)
+{
+    double a = px * qy, b = py * qx;
+    if (a != b)
+        return a - b;
+    return fma(px, qy, -a) - fma(py, qx, -b);
+}
+
+/* Two-sided: a hit when U, V, W are all >= 0 or all <= 0. A ray exactly through an edge or
+ * vertex (a zero edge function) hits every triangle there; det = U + V + W = 0 (the ray in the
+ * triangle's plane, or a degenerate triangle) misses. l1, l2, l3 = U, V, W / det. */
+int rf_intersect_triangle_watertight(const RfWatertightRay *w, RfTriangle tri, double t_min,
+                                     double t_max, RfHit *hit)
+{
+    RfVec3 a = rf_vec3_sub(tri.p1, w->ray.origin), b = rf_vec3_sub(tri.p2, w->ray.origin),
+           c = rf_vec3_sub(tri.p3, w->ray.origin);
+    double az = comp(a, w->kz), bz = comp(b, w->kz), cz = comp(c, w->kz);
+    double ax = comp(a, w->kx) - w->sx * az, ay = comp(a, w->ky) - w->sy * az;
+    double bx = comp(b, w->kx) - w->sx * bz, by = comp(b, w->ky) - w->sy * bz;
+    double cx = comp(c, w->kx) - w->sx * cz, cy = comp(c, w->ky) - w->sy * cz;
+    double u = edge_function(cx, cy, bx, by); /* edge p2 -> p3, weight of p1 */
+    double v = edge_function(ax, ay, cx, cy); /* edge p3 -> p1, weight of p2 */
+    double ww = edge_function(bx, by, ax, ay); /* edge p1 -> p2, weight of p3 */
+    if ((u < 0.0 || v < 0.0 || ww < 0.0) && (u > 0.0 || v > 0.0 || ww > 0.0))
+        return 0;
+    double det = u + v + ww;
+    if (det == 0.0)
+        return 0;
+    double tt = u * (w->sz * az) + v * (w->sz * bz) + ww * (w->sz * cz);
+    double t = tt / det;
+    if (!in_range(t, t_min, t_max))
+        return 0;
+    set_triangle_hit(hit, tri, t, u / det, v / det, ww / det);
+    return 1;
+}
+
+int rf_intersect_triangle(RfRay ray, RfTriangle tri, RfTriangleMethod method, double t_min,
+                          double t_max, RfHit *hit)
+{
+    RfWatertightRay w;
+    switch (method) {
+    case RF_TRIANGLE_SCRIPT:
+        return triangle_script(ray, tri, t_min, t_max, hit);
+    case RF_TRIANGLE_MOLLER:
+        return triangle_moller(ray, tri, t_min, t_max, hit);
+    case RF_TRIANGLE_WATERTIGHT:
+        w = rf_watertight_ray(ray);
+        return rf_intersect_triangle_watertight(&w, tri, t_min, t_max, hit);
+    }
+    return 0;
+}
+
+/* NFF cone/cylinder. With k the unit axis, H = |apex - base|, slope m = (r_apex - r_base)/H and
+ * q = p - base, a surface point has |q - <q,k> k| = r_base + m <q,k>. For p = e + t d, with
+ * the parts of d and e - base perpendicular to k (d_p, o_p) and along it (dz, oz):
+ *   |o_p + t d_p|^2 = (r_base + m (oz + t dz))^2
+ * a t^2 + 2 bh t + c = 0 with a = |d_p|^2 - m^2 dz^2, bh = <o_p,d_p> - m dz (r_base + m oz),
+ * c = |o_p|^2 - (r_base + m oz)^2. The squared equation also holds on the mirrored nappe past
+ * the tip, which the axial range [0, H] excludes (radii >= 0 there). */
+int rf_intersect_cone(RfRay ray, RfCone cone, double t_min, double t_max, RfHit *hit)
+{
+    RfVec3 axis = rf_vec3_sub(cone.apex, cone.base);
+    double h = rf_vec3_length(axis);
+    if (!(h > 0.0) || (cone.base_radius == 0.0 && cone.apex_radius == 0.0))
+        return 0;
+    RfVec3 k = rf_vec3_scale(axis, 1.0 / h);
+    double m = (cone.apex_radius - cone.base_radius) / h;
+    RfVec3 o = rf_vec3_sub(ray.origin, cone.base);
+    double dz = rf_vec3_dot(ray.dir, k), oz = rf_vec3_dot(o, k);
+    RfVec3 dp = rf_vec3_sub(ray.dir, rf_vec3_scale(k, dz)), op = rf_vec3_sub(o, rf_vec3_scale(k, oz));
+    double r0 = cone.base_radius + m * oz; /* radius at the origin's axial position */
+    double a = rf_vec3_dot(dp, dp) - m * m * dz * dz;
+    double bh = rf_vec3_dot(op, dp) - m * dz * r0;
+    double c = rf_vec3_dot(op, op) - r0 * r0;
+    double t[2];
+    if (!solve_quadratic(a, bh, c, bh * bh - a * c, t))
+        return 0;
+    for (int i = 0; i < 2; i++) {
+        if (!in_range(t[i], t_min, t_max))
+            continue;
+        RfVec3 q = rf_vec3_sub(rf_ray_at(ray, t[i]), cone.base);
+        double z = rf_vec3_dot(q, k);
+        if (!(z >= 0.0 && z <= h))
+            continue;
+        RfVec3 radial = rf_vec3_sub(q, rf_vec3_scale(k, z));
+        double rl = rf_vec3_length(radial);
+        /* gradient of |q_p| - (r_base + m z): the radial unit vector minus m k */
+        RfVec3 n = rl > 0.0 ? rf_vec3_sub(rf_vec3_scale(radial, 1.0 / rl), rf_vec3_scale(k, m))
+                            : rf_vec3_scale(k, m > 0.0 ? -1.0 : 1.0);
+        hit->t = t[i];
+        hit->l[0] = hit->l[1] = hit->l[2] = 0.0;
+        hit->normal = rf_vec3_normalize(n);
+        return 1;
+    }
+    return 0;
+}
