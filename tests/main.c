@@ -15,10 +15,12 @@ extern const RfTest rf_tests_raytrace[];
 extern const RfTest rf_tests_io[];
 extern const RfTest rf_tests_bvh[];
 extern const RfTest rf_tests_parallel[];
+extern const RfTest rf_tests_scene[];
 
 static const RfTest *const suites[] = {
     rf_tests_vecmat, rf_tests_geometry, rf_tests_transform, rf_tests_formula, rf_tests_cli,
     rf_tests_color, rf_tests_raytrace, rf_tests_io, rf_tests_bvh, rf_tests_parallel,
+    rf_tests_scene,
 };
 
 int rf_test_failed_checks;

@@ -81,6 +81,9 @@ int rf_in_mat(RfFormulaCall *call, const char *name, int n, double *m, int *n_ou
 int rf_in_nums(RfFormulaCall *call, const char *name, double **v, int *count);
 /* A list of up to max vectors of one dimension dim (0: any of 2..4), row-major into v. */
 int rf_in_vecs(RfFormulaCall *call, const char *name, int dim, int max, double *v, int *count, int *dim_out);
+/* A list of up to max triangles [[a,b,c], ...] of 3D points: 9 numbers per triangle into
+ * corners (a.x a.y a.z b.x ...). */
+int rf_in_tris(RfFormulaCall *call, const char *name, int max, double *corners, int *count);
 /* A word out of a '|'-separated list of choices; *index gets its position. */
 int rf_in_choice(RfFormulaCall *call, const char *name, const char *choices, int *index);
 /* Angle in degrees (name ends in _deg) -> radians. */

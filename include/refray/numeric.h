@@ -23,4 +23,11 @@
  * ulps of 1; for eta_i/eta_t = 1.5 it shifts the TIR onset by under 5e-15 rad. */
 #define RF_TIR_SLACK 1e-14
 
+/* A polygon is degenerate (collinear) when twice its vector area |N| is at most this times
+ * the square of its extent: decimal coordinates of truly collinear points leave |N| of a few
+ * ulps of ext^2 (1e-16), while the thinnest SPD polygon has |N| / ext^2 above 1e-4. The same
+ * ratio decides "up is parallel to the view direction" and the convexity hint.
+ */
+#define RF_SCENE_DEGENERATE_REL 1e-12
+
 #endif

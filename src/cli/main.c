@@ -15,6 +15,7 @@ static const Command commands[] = {
     {"formula", rf_cmd_formula, "compute a formula of the lecture script (list, ID key=value, --batch)"},
     {"chromaticity", rf_cmd_chromaticity, "draw the CIE 1931 xy chromaticity diagram (PNG/SVG, §1.5)"},
     {"metamers", rf_cmd_metamers, "two different spectra with the same XYZ and LMS (§1.3.1)"},
+    {"info", rf_cmd_info, "load a scene (.nff, .rf): counts, materials, lights, features used"},
 };
 
 static void usage(FILE *out)

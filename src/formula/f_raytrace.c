@@ -291,16 +291,14 @@ static int f_reflect(RfFormulaCall *c)
 #define MAX_FACES 64
 static int f_vertex_normal(RfFormulaCall *c)
 {
-    double v[3 * MAX_FACES * 3];
+    double v[9 * MAX_FACES];
     RfVec3 corners[3 * MAX_FACES], n;
-    int count, dim;
-    if (rf_in_vecs(c, "faces", 3, 3 * MAX_FACES, v, &count, &dim))
+    int count = 0;
+    if (rf_in_tris(c, "faces", MAX_FACES, v, &count))
         return 1;
-    if (count % 3 != 0)
-        return rf_call_error(c, "faces must hold 3 corners per triangle (%d vectors given)", count);
-    for (int k = 0; k < count; k++)
+    for (int k = 0; k < 3 * count; k++)
         corners[k] = rf_vec3(v[3 * k], v[3 * k + 1], v[3 * k + 2]);
-    if (rf_vertex_normal(corners, (size_t)(count / 3), &n) != RF_OK)
+    if (rf_vertex_normal(corners, (size_t)count, &n) != RF_OK)
         return rf_call_error(c, "the face normals sum to zero: no vertex normal");
     rf_out_vec3(c, "n", n);
     return 0;
@@ -543,9 +541,9 @@ const RfFormula rf_formulas_raytrace[] = {
      "ray dir; n normalised here", "n:vec; l:vec?; dir:vec?", "r:vec",
      "the script writes R_L = 2N<N,L>L; correct: R_L = 2N<N,L> - L", f_reflect},
     {"vertex-normal", "3.6.3", "n = normalise(sum (b-a) x (c-a)) over the faces around the vertex "
-     "(area-weighted; normalised, not divided by the count). faces: the corners a, b, c of each "
-     "triangle in turn, as one list of 3D points (3 per face, at most 64 faces)",
-     "faces:vecs", "n:vec", NULL, f_vertex_normal},
+     "(area-weighted; normalised, not divided by the count). faces: the triangles around the "
+     "vertex, [[a,b,c], ...] (at most 64)",
+     "faces:tris", "n:vec", NULL, f_vertex_normal},
     {"interpolate-normal", "3.6.3", "Phong shading: n = normalise(l1 n1 + l2 n2 + l3 n3)",
      "n1:vec; n2:vec; n3:vec; l1:num; l2:num; l3:num", "n:vec", NULL, f_interpolate_normal},
     {"light-point", "3.7", "point light: i = I/d^2 (falloff=none: I, the NFF convention), l towards the light",

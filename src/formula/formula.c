@@ -56,11 +56,25 @@ const RfFormula *rf_formula_find(const char *id)
 
 /* ---- specs ---- */
 
-/* One parsed item of a spec: "name:kind=default" / "name:kind?" / "name:kind". */
+/* One parsed item of a spec: "name:kind=default", "name:kind?" or "name:kind", optionally
+ * followed by a note after a space ("unit:vec (null for the zero vector)"). */
 typedef struct {
-    char name[48], kind[16], def[160];
+    char name[48], kind[16], def[160], note[200];
     int has_def, optional;
 } SpecItem;
+
+static void copy_trimmed(char *dst, size_t cap, const char *s, const char *end)
+{
+    while (s < end && *s == ' ')
+        s++;
+    while (end > s && end[-1] == ' ')
+        end--;
+    size_t n = (size_t)(end - s);
+    if (n >= cap)
+        n = cap - 1;
+    memcpy(dst, s, n);
+    dst[n] = 0;
+}
 
 /* Parses the item that starts at *p and advances *p past it; returns 0 at the end. */
 static int spec_next(const char **p, SpecItem *it)
@@ -76,35 +90,27 @@ static int spec_next(const char **p, SpecItem *it)
     *p = end;
     memset(it, 0, sizeof *it);
     const char *colon = memchr(s, ':', (size_t)(end - s));
-    const char *eq = memchr(s, '=', (size_t)(end - s));
-    const char *name_end = colon ? colon : (eq ? eq : end);
-    size_t n = (size_t)(name_end - s);
-    if (n >= sizeof it->name)
-        n = sizeof it->name - 1;
-    memcpy(it->name, s, n);
-    while (n > 0 && it->name[n - 1] == ' ')
-        it->name[--n] = 0;
-    if (colon) {
-        const char *k = colon + 1, *kend = eq ? eq : end;
-        size_t kn = (size_t)(kend - k);
-        if (kn >= sizeof it->kind)
-            kn = sizeof it->kind - 1;
-        memcpy(it->kind, k, kn);
-        while (kn > 0 && it->kind[kn - 1] == ' ')
-            it->kind[--kn] = 0;
-        if (kn > 0 && it->kind[kn - 1] == '?') {
-            it->optional = 1;
-            it->kind[--kn] = 0;
-        }
-    }
-    if (eq) {
-        size_t dn = (size_t)(end - eq - 1);
-        if (dn >= sizeof it->def)
-            dn = sizeof it->def - 1;
-        memcpy(it->def, eq + 1, dn);
+    const char *name_end = colon ? colon : end;
+    copy_trimmed(it->name, sizeof it->name, s, name_end);
+    if (!colon)
+        return 1;
+    /* the kind is one word; '?' or '=default' may follow it directly; the rest is a note */
+    const char *k = colon + 1, *q = k;
+    while (q < end && *q != ' ' && *q != '?' && *q != '=')
+        q++;
+    copy_trimmed(it->kind, sizeof it->kind, k, q);
+    if (q < end && *q == '?') {
+        it->optional = 1;
+        q++;
+    } else if (q < end && *q == '=') {
+        const char *d = ++q;
+        while (q < end && *q != ' ')
+            q++;
+        copy_trimmed(it->def, sizeof it->def, d, q);
         it->has_def = 1;
         it->optional = 1;
     }
+    copy_trimmed(it->note, sizeof it->note, q, end);
     return 1;
 }
 
@@ -580,6 +586,33 @@ int rf_in_vecs(RfFormulaCall *call, const char *name, int dim, int max, double *
     return 0;
 }
 
+int rf_in_tris(RfFormulaCall *call, const char *name, int max, double *corners, int *count)
+{
+    int err;
+    const cJSON *it = input_item(call, name, &err);
+    if (err)
+        return 1;
+    if (!it || !cJSON_IsArray(it) || cJSON_GetArraySize(it) < 1)
+        return rf_call_error(call, "input '%s' must be a list of triangles [[a,b,c], ...]", name);
+    if (cJSON_GetArraySize(it) > max)
+        return rf_call_error(call, "input '%s' has more than %d triangles", name, max);
+    int n = 0;
+    const cJSON *tri, *corner;
+    cJSON_ArrayForEach(tri, it) {
+        int k = 0;
+        if (!cJSON_IsArray(tri) || cJSON_GetArraySize(tri) != 3)
+            return rf_call_error(call, "input '%s': each triangle is three 3D points [a,b,c]", name);
+        cJSON_ArrayForEach(corner, tri) {
+            if (json_numbers(corner, corners + 9 * n + 3 * k, 3) != 3)
+                return rf_call_error(call, "input '%s': each corner must be 3 finite numbers", name);
+            k++;
+        }
+        n++;
+    }
+    *count = n;
+    return 0;
+}
+
 int rf_in_choice(RfFormulaCall *call, const char *name, const char *choices, int *index)
 {
     int err;
@@ -799,6 +832,8 @@ static void help_spec(const char *title, const char *spec, FILE *out)
             fprintf(out, " (default %s)", it.def);
         else if (it.optional)
             fprintf(out, " (optional)");
+        if (it.note[0])
+            fprintf(out, " %s", it.note);
         fputc('\n', out);
     }
 }

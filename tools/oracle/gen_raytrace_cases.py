@@ -405,12 +405,13 @@ for k in range(6):
     s = mp.matrix([0, 0, 0])
     for f in range(int(rng.integers(1, 7))):
         b, c = rv(), rv()
-        faces += [v0, b, c]
+        faces.append([v0, b, c])
         s += cross(M(b) - M(v0), M(c) - M(v0))
     add("vertex-normal", {"faces": faces}, {"n": FV(unit(s))}, MP + "; normalise(sum of (b-a) x (c-a)), area-weighted")
-add("vertex-normal", {"faces": [[0, 0, 0], [2, 0, 0], [0, 2, 0], [0, 0, 0], [1, 0, 0], [0, 0, 1]]},
+add("vertex-normal", {"faces": [[[0, 0, 0], [2, 0, 0], [0, 2, 0]], [[0, 0, 0], [1, 0, 0], [0, 0, 1]]]},
     {"n": FV(unit(mp.matrix([0, -1, 4])))}, "by hand: areas 2 and 0.5 weigh +z and -y; the plain mean would be (0,-1,1)/sqrt2")
-err("vertex-normal", {"faces": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 0], [0, 1, 0], [1, 0, 0]]}, "normals cancel")
+err("vertex-normal", {"faces": [[[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 0, 0], [0, 1, 0], [1, 0, 0]]]}, "normals cancel")
+err("vertex-normal", {"faces": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}, "a flat list of corners is not a list of triangles")
 
 for k in range(6):
     ns = [runit() for _ in range(3)]

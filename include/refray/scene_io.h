@@ -1,0 +1,44 @@
+/* refray: scene readers. NFF (shared/NFF.md, the SPD scenes as they are) and refray's own
+ * text format (docs/scene-format.md) both fill the model of scene.h.
+ *
+ * Errors: the reader returns a status and writes one line "file:line:col: message" to err
+ * (1-based line, 1-based byte column; a file that cannot be opened reports 1:1). The scene
+ * is freed and left empty on failure. */
+#ifndef REFRAY_SCENE_IO_H
+#define REFRAY_SCENE_IO_H
+
+#include <stddef.h>
+
+#include "refray/scene.h"
+#include "refray/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+    /* how NFF's `angle` is read (NFF.md): RF_FOV_PIXEL_CENTRES (default, the NFF text) or
+     * RF_FOV_EDGES (the SPD's POV-Ray converter) */
+    RfFovReading nff_fov;
+} RfLoadOptions;
+
+RfLoadOptions rf_load_options_default(void);
+
+/* Reads a scene file: ".nff" -> NFF, ".rf" -> refray's format, a trailing ".gz" is
+ * decompressed first (zlib); any other name is recognised by its first keyword.
+ * opt may be NULL (defaults). */
+RfStatus rf_scene_load(const char *path, const RfLoadOptions *opt, RfScene *scene, char *err,
+                       size_t errsz);
+
+/* The readers on text in memory (len bytes, need not be NUL-terminated); name is used in
+ * messages. */
+RfStatus rf_scene_read_nff(const char *name, const char *text, size_t len,
+                           const RfLoadOptions *opt, RfScene *scene, char *err, size_t errsz);
+RfStatus rf_scene_read_rf(const char *name, const char *text, size_t len, RfScene *scene,
+                          char *err, size_t errsz);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,190 @@
+/* `refray info SCENE`: what a scene holds (primitive counts by type, materials, lights, camera,
+ * settings, bounds) and the features its renderer needs (rf_scene_features). */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+#include "refray/scene.h"
+#include "refray/scene_io.h"
+
+/* Materials and lights listed one per line before "... and N more" (unless --all). */
+#define INFO_LIST_MAX 10
+
+static void usage(FILE *out)
+{
+    fprintf(out, "usage: refray info [--all] [--nff-fov centres|edges] SCENE\n\n"
+                 "Loads SCENE (.nff, .rf, optionally .gz) and prints its camera, render settings,\n"
+                 "primitive counts, materials, lights, bounding box and the features it uses.\n"
+                 "  --all        list every material and light (default: the first %d)\n"
+                 "  --nff-fov    how NFF's `angle` is read: between the outermost pixel centres\n"
+                 "               (default, the NFF text) or between the image edges\n",
+                 INFO_LIST_MAX);
+}
+
+static void rgb(const char *label, RfRgb c)
+{
+    printf(" %s (%g, %g, %g)", label, c.r, c.g, c.b);
+}
+
+static void vec(const char *label, RfVec3 v)
+{
+    printf(" %s (%g, %g, %g)", label, v.x, v.y, v.z);
+}
+
+static void print_camera(const RfScene *s)
+{
+    const RfSceneCamera *c = &s->camera;
+    RfWindow w = rf_scene_camera_window(c, s->render.width, s->render.height);
+    printf("camera   ");
+    vec("eye", c->eye);
+    vec("target", c->target);
+    vec("up", c->up);
+    printf("\n         ");
+    if (c->has_window)
+        printf(" window given");
+    else
+        printf(" fov %g deg (%s)", c->fov,
+               c->fov_reading == RF_FOV_EDGES ? "edge to edge" : "between outer pixel centres");
+    printf(", d %g, hither %g\n          window l %.9g r %.9g b %.9g t %.9g\n", c->d, c->hither,
+           w.l, w.r, w.b, w.t);
+}
+
+/* Returns the number of planes (unbounded, so left out of the bounds). */
+static size_t print_prims(const RfScene *s)
+{
+    size_t by_type[RF_PRIM_TYPE_COUNT] = {0};
+    size_t two_sided = 0, inside = 0, normals = 0, nonconvex = 0;
+    for (size_t i = 0; i < s->prim_count; i++) {
+        const RfPrimitive *p = &s->prims[i];
+        if ((unsigned)p->type < RF_PRIM_TYPE_COUNT)
+            by_type[p->type]++;
+        two_sided += (p->flags & RF_PRIM_TWO_SIDED) != 0;
+        inside += (p->flags & RF_PRIM_INSIDE) != 0;
+        normals += (p->flags & RF_PRIM_VERTEX_NORMALS) != 0;
+        nonconvex += (p->flags & RF_PRIM_NONCONVEX) != 0;
+    }
+    printf("primitives %zu:", s->prim_count);
+    for (int t = 0; t < RF_PRIM_TYPE_COUNT; t++)
+        if (by_type[t])
+            printf(" %s %zu", rf_prim_type_name((RfPrimType)t), by_type[t]);
+    printf("\n           two-sided %zu, inside-only %zu, with vertex normals %zu, non-convex %zu\n",
+           two_sided, inside, normals, nonconvex);
+    printf("vertices  %zu (vertex normals %zu)\n", s->vertex_count, s->normal_count);
+    return by_type[RF_PRIM_PLANE];
+}
+
+static void print_materials(const RfScene *s, int all)
+{
+    printf("materials %zu\n", s->material_count);
+    for (size_t i = 0; i < s->material_count; i++) {
+        if (!all && i == INFO_LIST_MAX) {
+            printf("          ... and %zu more (--all lists them)\n", s->material_count - i);
+            break;
+        }
+        const RfMaterial *m = &s->materials[i];
+        printf("  %-8s", m->name);
+        rgb("ka", m->ka);
+        rgb("kd", m->kd);
+        rgb("ks", m->ks);
+        printf(" n %g", m->shininess);
+        rgb("kr", m->kr);
+        rgb("kt", m->kt);
+        printf(" ior %g", m->ior);
+        if (m->emission.r > 0 || m->emission.g > 0 || m->emission.b > 0)
+            rgb("emission", m->emission);
+        printf("%s%s\n", m->flags & RF_MAT_FRESNEL ? " fresnel" : "",
+               m->flags & RF_MAT_SMOOTH ? " smooth" : " flat");
+    }
+}
+
+static void print_lights(const RfScene *s, int all)
+{
+    size_t by_kind[RF_LIGHT_KIND_COUNT] = {0};
+    for (size_t i = 0; i < s->light_count; i++)
+        if ((unsigned)s->lights[i].kind < RF_LIGHT_KIND_COUNT)
+            by_kind[s->lights[i].kind]++;
+    printf("lights    %zu:", s->light_count);
+    for (int k = 0; k < RF_LIGHT_KIND_COUNT; k++)
+        if (by_kind[k])
+            printf(" %s %zu", rf_light_kind_name((RfLightKind)k), by_kind[k]);
+    printf("\n");
+    for (size_t i = 0; i < s->light_count; i++) {
+        if (!all && i == INFO_LIST_MAX) {
+            printf("          ... and %zu more (--all lists them)\n", s->light_count - i);
+            break;
+        }
+        const RfLight *l = &s->lights[i];
+        printf("  %-11s", rf_light_kind_name(l->kind));
+        if (l->kind != RF_LIGHT_DIRECTIONAL)
+            vec("at", l->position);
+        if (l->kind != RF_LIGHT_POINT)
+            vec(l->kind == RF_LIGHT_SPOT ? "axis" : "direction", l->direction);
+        if (l->kind == RF_LIGHT_SPOT)
+            printf(" exponent %g cutoff %g deg", l->spot_exponent, l->spot_cutoff);
+        rgb("intensity", l->intensity);
+        if (l->kind != RF_LIGHT_DIRECTIONAL)
+            printf(" %s", l->falloff == RF_FALLOFF_NONE ? "no falloff" : "inverse-square");
+        printf("\n");
+    }
+}
+
+int rf_cmd_info(int argc, char **argv)
+{
+    const char *path = NULL;
+    int all = 0;
+    RfLoadOptions opt = rf_load_options_default();
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            usage(stdout);
+            return 0;
+        } else if (strcmp(argv[i], "--all") == 0) {
+            all = 1;
+        } else if (strcmp(argv[i], "--nff-fov") == 0 && i + 1 < argc &&
+                   (strcmp(argv[i + 1], "centres") == 0 || strcmp(argv[i + 1], "edges") == 0)) {
+            opt.nff_fov = argv[++i][0] == 'e' ? RF_FOV_EDGES : RF_FOV_PIXEL_CENTRES;
+        } else if (argv[i][0] == '-' || path) {
+            usage(stderr);
+            return 2;
+        } else {
+            path = argv[i];
+        }
+    }
+    if (!path) {
+        usage(stderr);
+        return 2;
+    }
+    RfScene s;
+    char err[512];
+    if (rf_scene_load(path, &opt, &s, err, sizeof err) != RF_OK) {
+        fprintf(stderr, "%s\n", err);
+        return 1;
+    }
+    const RfRenderSettings *r = &s.render;
+    printf("scene     %s (%s)\n", path, s.format == RF_FORMAT_NFF ? "NFF" : "refray format");
+    print_camera(&s);
+    printf("image     %d x %d, depth %d, threshold %g, %d sample%s per pixel\n", r->width,
+           r->height, r->max_depth, r->min_contribution, r->samples, r->samples == 1 ? "" : "s");
+    printf("         ");
+    rgb("background", r->background);
+    rgb("ambient", r->ambient);
+    printf("\n");
+    size_t planes = print_prims(&s);
+    print_materials(&s, all);
+    print_lights(&s, all);
+    RfVec3 lo, hi;
+    if (rf_scene_bounds(&s, &lo, &hi))
+        printf("bounds    (%g, %g, %g) .. (%g, %g, %g)%s\n", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z,
+               planes ? " (planes are unbounded, left out)" : "");
+    else
+        printf("bounds    none (no bounded primitive)\n");
+    unsigned f = rf_scene_features(&s);
+    printf("features ");
+    if (!f)
+        printf(" none");
+    for (int b = 0; b < RF_FEAT_COUNT; b++)
+        if (f & (1u << b))
+            printf(" %s", rf_feature_name(1u << b));
+    printf("\n");
+    rf_scene_free(&s);
+    return 0;
+}

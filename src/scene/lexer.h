@@ -1,0 +1,74 @@
+/* refray: the tokenizer shared by the NFF reader and the refray-format reader (internal).
+ * A token is a run of characters up to white space or '#'; '#' starts a comment to the end
+ * of the line. Tokens that start with a digit, '+', '-' or '.' are numbers, all others words.
+ * Every error is written as "name:line:col: message" (1-based line, 1-based byte column). */
+#ifndef RF_SCENE_LEXER_H
+#define RF_SCENE_LEXER_H
+
+#include <stddef.h>
+
+#include "refray/rgb.h"
+#include "refray/status.h"
+#include "refray/vec.h"
+
+typedef enum { RF_TOK_EOF, RF_TOK_WORD, RF_TOK_NUMBER } RfTokKind;
+
+typedef struct {
+    RfTokKind kind;
+    const char *s;
+    size_t len;
+    int line, col;
+    int bol; /* first token on its line */
+} RfToken;
+
+typedef struct {
+    const char *name;
+    const char *p, *end; /* scan position */
+    int line, col;       /* of p */
+    RfToken tok;         /* the next token (lookahead) */
+    RfToken last;        /* the token consumed last */
+    int last_end_line, last_end_col; /* just after the token consumed last */
+    char *err;
+    size_t errsz;
+} RfLexer;
+
+void rf_lex_init(RfLexer *lx, const char *name, const char *text, size_t len, char *err,
+                 size_t errsz);
+/* Consumes the lookahead token (no-op at the end). */
+void rf_lex_advance(RfLexer *lx);
+/* 1 when the token is the word w. */
+int rf_lex_is(const RfToken *t, const char *w);
+/* 1 when the lookahead starts a new statement: the end of the text or a word that is the
+ * first token on its line. */
+int rf_lex_at_statement_start(const RfLexer *lx);
+
+/* Writes "name:line:col: message" and returns RF_ERR_PARSE. */
+RfStatus rf_lex_error(RfLexer *lx, int line, int col, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+/* The token, quoted and shortened for a message: 'abc', with non-printable bytes as \xNN. */
+const char *rf_lex_quote(const RfToken *t, char *buf, size_t n);
+/* When ok is 0: an error at the token consumed last (a value out of range). */
+RfStatus rf_lex_check(RfLexer *lx, int ok, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* Reads one finite number; `what` names it in messages ("sphere radius"). A statement that
+ * ends early reports "missing number" just after its last token; NaN, Inf and overflow are
+ * errors at the token. */
+RfStatus rf_lex_number(RfLexer *lx, const char *what, double *out);
+/* A number >= lo. */
+RfStatus rf_lex_number_ge(RfLexer *lx, const char *what, double lo, double *out);
+/* An integer in [lo, hi] written without fraction or exponent. */
+RfStatus rf_lex_int(RfLexer *lx, const char *what, long lo, long hi, int *out);
+/* Three numbers; rf_lex_rgb also requires each >= 0. */
+RfStatus rf_lex_vec3(RfLexer *lx, const char *what, RfVec3 *out);
+RfStatus rf_lex_rgb(RfLexer *lx, const char *what, RfRgb *out);
+/* The next token must be a word (a keyword or a name). */
+RfStatus rf_lex_word(RfLexer *lx, const char *what, RfToken *out);
+
+#endif

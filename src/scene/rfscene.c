@@ -1,0 +1,445 @@
+/* refray: the reader of refray's own scene format (docs/scene-format.md has every keyword
+ * with an example).
+ *
+ * One statement per line: a keyword, its positional numbers, then named attributes. A line
+ * that starts with a number continues the statement above (long polygons). Colours take one
+ * number (grey) or three. Point and spot lights fall off with the squared distance (§3.7)
+ * unless `falloff none` is given. Primitives are two-sided unless marked otherwise. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "reader.h"
+#include "refray/scene_io.h"
+
+#define RF_MAX_POLY_VERTICES 1000000
+
+typedef struct {
+    RfLexer lx;
+    RfScene *scene;
+    int material;      /* current material, -1 before the first */
+    RfVec3 *vbuf, *nbuf; /* scratch for polygon vertices and normals */
+    size_t vcap;
+} RfReader;
+
+static RfSrcLoc loc_of(const RfToken *t)
+{
+    RfSrcLoc l;
+    l.line = t->line;
+    l.col = t->col;
+    return l;
+}
+
+/* A colour: one number (grey) or three, each >= 0. */
+static RfStatus read_colour(RfLexer *lx, const char *what, RfRgb *c)
+{
+    RfStatus st = rf_lex_number_ge(lx, what, 0.0, &c->r);
+    if (st)
+        return st;
+    if (lx->tok.kind != RF_TOK_NUMBER) {
+        c->g = c->b = c->r;
+        return RF_OK;
+    }
+    if ((st = rf_lex_number_ge(lx, what, 0.0, &c->g)) || (st = rf_lex_number_ge(lx, what, 0.0, &c->b)))
+        return st;
+    return RF_OK;
+}
+
+/* Takes the next attribute token into *attr; 0 at the end of the statement. */
+static int next_attr(RfLexer *lx, RfToken *attr)
+{
+    if (rf_lex_at_statement_start(lx))
+        return 0;
+    *attr = lx->tok;
+    rf_lex_advance(lx);
+    return 1;
+}
+
+static RfStatus bad_attr(RfLexer *lx, const RfToken *kw, const RfToken *attr)
+{
+    char q[96], k[96];
+    if (attr->kind == RF_TOK_NUMBER)
+        return rf_lex_error(lx, attr->line, attr->col, "too many numbers for %s: %s",
+                            rf_lex_quote(kw, k, sizeof k), rf_lex_quote(attr, q, sizeof q));
+    return rf_lex_error(lx, attr->line, attr->col, "unknown attribute %s for %s",
+                        rf_lex_quote(attr, q, sizeof q), rf_lex_quote(kw, k, sizeof k));
+}
+
+/* The end of a statement without attributes. */
+static RfStatus no_attrs(RfLexer *lx, const RfToken *kw)
+{
+    RfToken a;
+    return next_attr(lx, &a) ? bad_attr(lx, kw, &a) : RF_OK;
+}
+
+static RfStatus read_camera(RfReader *r, const RfToken *kw)
+{
+    RfLexer *lx = &r->lx;
+    RfSceneCamera *c = &r->scene->camera;
+    RfToken a;
+    RfStatus st = RF_OK;
+    int have_eye = 0, have_target = 0, have_up = 0, have_fov = 0;
+    if (r->scene->has_camera)
+        return rf_lex_error(lx, kw->line, kw->col, "second camera: the scene has one camera");
+    memset(c, 0, sizeof *c);
+    c->d = 1.0;
+    c->fov_reading = RF_FOV_EDGES;
+    c->loc = c->target_loc = c->up_loc = loc_of(kw);
+    while (!st && next_attr(lx, &a)) {
+        if (rf_lex_is(&a, "eye")) {
+            st = rf_lex_vec3(lx, "eye", &c->eye);
+            have_eye = 1;
+        } else if (rf_lex_is(&a, "target")) {
+            st = rf_lex_vec3(lx, "target", &c->target);
+            c->target_loc = loc_of(&a);
+            have_target = 1;
+        } else if (rf_lex_is(&a, "up")) {
+            st = rf_lex_vec3(lx, "up", &c->up);
+            c->up_loc = loc_of(&a);
+            have_up = 1;
+        } else if (rf_lex_is(&a, "fov")) {
+            if (!(st = rf_lex_number(lx, "fov", &c->fov)))
+                st = rf_lex_check(lx, c->fov > 0.0 && c->fov < 180.0,
+                                  "fov must be in (0, 180) degrees, found %g", c->fov);
+            have_fov = 1;
+        } else if (rf_lex_is(&a, "window")) {
+            if (!(st = rf_lex_number(lx, "window l", &c->l)) &&
+                !(st = rf_lex_number(lx, "window r", &c->r)) &&
+                !(st = rf_lex_check(lx, c->l < c->r, "window needs l < r")) &&
+                !(st = rf_lex_number(lx, "window b", &c->b)) &&
+                !(st = rf_lex_number(lx, "window t", &c->t)))
+                st = rf_lex_check(lx, c->b < c->t, "window needs b < t");
+            c->has_window = 1;
+        } else if (rf_lex_is(&a, "d")) {
+            if (!(st = rf_lex_number(lx, "d", &c->d)))
+                st = rf_lex_check(lx, c->d > 0.0, "d must be > 0, found %g", c->d);
+        } else if (rf_lex_is(&a, "hither")) {
+            st = rf_lex_number_ge(lx, "hither", 0.0, &c->hither);
+        } else {
+            return bad_attr(lx, kw, &a);
+        }
+    }
+    if (st)
+        return st;
+    const char *missing = !have_eye ? "eye" : !have_target ? "target" : !have_up ? "up" : NULL;
+    if (missing)
+        return rf_lex_error(lx, kw->line, kw->col, "camera needs '%s'", missing);
+    if (have_fov == c->has_window)
+        return rf_lex_error(lx, kw->line, kw->col, "camera needs exactly one of 'fov' and 'window'");
+    r->scene->has_camera = 1;
+    return rf__reader_check_camera(lx, c);
+}
+
+static int find_material(const RfScene *s, const RfToken *name)
+{
+    for (size_t i = 0; i < s->material_count; i++)
+        if (strlen(s->materials[i].name) == name->len &&
+            memcmp(s->materials[i].name, name->s, name->len) == 0)
+            return (int)i;
+    return -1;
+}
+
+/* A material name token: a word shorter than RF_NAME_MAX. */
+static RfStatus read_name(RfLexer *lx, RfToken *name)
+{
+    char q[96];
+    RfStatus st = rf_lex_word(lx, "a material name", name);
+    if (!st && name->len >= RF_NAME_MAX)
+        st = rf_lex_error(lx, name->line, name->col, "material name %s is longer than %d bytes",
+                          rf_lex_quote(name, q, sizeof q), RF_NAME_MAX - 1);
+    return st;
+}
+
+/* A reference to a defined material. */
+static RfStatus read_material_ref(RfReader *r, int *index)
+{
+    RfToken name;
+    char q[96];
+    RfStatus st = read_name(&r->lx, &name);
+    if (st)
+        return st;
+    *index = find_material(r->scene, &name);
+    if (*index < 0)
+        return rf_lex_error(&r->lx, name.line, name.col, "unknown material %s",
+                            rf_lex_quote(&name, q, sizeof q));
+    return RF_OK;
+}
+
+static RfStatus read_material(RfReader *r, const RfToken *kw)
+{
+    RfLexer *lx = &r->lx;
+    RfMaterial m = rf_material_default();
+    RfToken name, a;
+    char q[96];
+    RfStatus st = read_name(lx, &name);
+    if (st)
+        return st;
+    if (find_material(r->scene, &name) >= 0)
+        return rf_lex_error(lx, name.line, name.col, "material %s is defined twice",
+                            rf_lex_quote(&name, q, sizeof q));
+    memcpy(m.name, name.s, name.len);
+    m.name[name.len] = 0;
+    m.loc = loc_of(kw);
+    while (!st && next_attr(lx, &a)) {
+        if (rf_lex_is(&a, "ka"))
+            st = read_colour(lx, "ka", &m.ka);
+        else if (rf_lex_is(&a, "kd"))
+            st = read_colour(lx, "kd", &m.kd);
+        else if (rf_lex_is(&a, "ks"))
+            st = read_colour(lx, "ks", &m.ks);
+        else if (rf_lex_is(&a, "kr"))
+            st = read_colour(lx, "kr", &m.kr);
+        else if (rf_lex_is(&a, "kt"))
+            st = read_colour(lx, "kt", &m.kt);
+        else if (rf_lex_is(&a, "emission"))
+            st = read_colour(lx, "emission", &m.emission);
+        else if (rf_lex_is(&a, "shininess"))
+            st = rf_lex_number_ge(lx, "shininess", 0.0, &m.shininess);
+        else if (rf_lex_is(&a, "ior")) {
+            if (!(st = rf_lex_number(lx, "ior", &m.ior)))
+                st = rf_lex_check(lx, m.ior > 0.0, "ior must be > 0, found %g", m.ior);
+        } else if (rf_lex_is(&a, "fresnel"))
+            m.flags |= RF_MAT_FRESNEL;
+        else if (rf_lex_is(&a, "flat"))
+            m.flags &= ~(unsigned)RF_MAT_SMOOTH;
+        else if (rf_lex_is(&a, "smooth"))
+            m.flags |= RF_MAT_SMOOTH;
+        else
+            return bad_attr(lx, kw, &a);
+    }
+    if (st)
+        return st;
+    if (rf_scene_add_material(r->scene, &m, &r->material))
+        return rf_lex_error(lx, kw->line, kw->col, "out of memory");
+    return RF_OK;
+}
+
+static RfStatus read_light(RfReader *r, const RfToken *kw)
+{
+    RfLexer *lx = &r->lx;
+    RfLight l;
+    RfToken kind, a;
+    char q[96];
+    RfStatus st = rf_lex_word(lx, "a light kind (point, directional, spot)", &kind);
+    if (st)
+        return st;
+    memset(&l, 0, sizeof l);
+    l.loc = loc_of(kw);
+    l.intensity = rf_rgb(1, 1, 1);
+    l.falloff = RF_FALLOFF_INVERSE_SQUARE;
+    int have_axis = 0, have_cutoff = 0;
+    if (rf_lex_is(&kind, "point") || rf_lex_is(&kind, "spot")) {
+        l.kind = kind.s[0] == 'p' ? RF_LIGHT_POINT : RF_LIGHT_SPOT;
+        st = rf_lex_vec3(lx, "light position", &l.position);
+    } else if (rf_lex_is(&kind, "directional")) {
+        l.kind = RF_LIGHT_DIRECTIONAL;
+        l.falloff = RF_FALLOFF_NONE;
+        if (!(st = rf_lex_vec3(lx, "light direction", &l.direction)))
+            st = rf_lex_check(lx, rf_vec3_length(l.direction) > 0.0,
+                              "light direction has zero length");
+    } else {
+        return rf_lex_error(lx, kind.line, kind.col,
+                            "unknown light kind %s (point, directional, spot)",
+                            rf_lex_quote(&kind, q, sizeof q));
+    }
+    while (!st && next_attr(lx, &a)) {
+        if (rf_lex_is(&a, "intensity")) {
+            st = read_colour(lx, "intensity", &l.intensity);
+        } else if (rf_lex_is(&a, "falloff") && l.kind != RF_LIGHT_DIRECTIONAL) {
+            RfToken v;
+            if (!(st = rf_lex_word(lx, "'none' or 'inverse-square'", &v))) {
+                if (rf_lex_is(&v, "none"))
+                    l.falloff = RF_FALLOFF_NONE;
+                else if (rf_lex_is(&v, "inverse-square"))
+                    l.falloff = RF_FALLOFF_INVERSE_SQUARE;
+                else
+                    st = rf_lex_error(lx, v.line, v.col,
+                                      "falloff must be 'none' or 'inverse-square', found %s",
+                                      rf_lex_quote(&v, q, sizeof q));
+            }
+        } else if (rf_lex_is(&a, "axis") && l.kind == RF_LIGHT_SPOT) {
+            if (!(st = rf_lex_vec3(lx, "spot axis", &l.direction)))
+                st = rf_lex_check(lx, rf_vec3_length(l.direction) > 0.0,
+                                  "spot axis has zero length");
+            have_axis = 1;
+        } else if (rf_lex_is(&a, "exponent") && l.kind == RF_LIGHT_SPOT) {
+            st = rf_lex_number_ge(lx, "spot exponent", 0.0, &l.spot_exponent);
+        } else if (rf_lex_is(&a, "cutoff") && l.kind == RF_LIGHT_SPOT) {
+            if (!(st = rf_lex_number(lx, "spot cutoff", &l.spot_cutoff)))
+                st = rf_lex_check(lx, l.spot_cutoff > 0.0 && l.spot_cutoff <= 90.0,
+                                  "spot cutoff must be in (0, 90] degrees, found %g",
+                                  l.spot_cutoff);
+            have_cutoff = 1;
+        } else {
+            return bad_attr(lx, &kind, &a);
+        }
+    }
+    if (st)
+        return st;
+    if (l.kind == RF_LIGHT_SPOT && (!have_axis || !have_cutoff))
+        return rf_lex_error(lx, kw->line, kw->col, "spot light needs 'axis' and 'cutoff'");
+    if (rf_scene_add_light(r->scene, &l))
+        return rf_lex_error(lx, kw->line, kw->col, "out of memory");
+    return RF_OK;
+}
+
+/* n points into the scratch buffer: the vertices, or their normals when `normals` is set. */
+static RfStatus read_points(RfReader *r, int normals, int n, const char *what)
+{
+    if ((size_t)n > r->vcap) {
+        RfVec3 *v = realloc(r->vbuf, (size_t)n * sizeof *v);
+        if (v)
+            r->vbuf = v;
+        RfVec3 *vn = v ? realloc(r->nbuf, (size_t)n * sizeof *vn) : NULL;
+        if (vn)
+            r->nbuf = vn;
+        if (!v || !vn)
+            return rf_lex_error(&r->lx, r->lx.tok.line, r->lx.tok.col, "out of memory");
+        r->vcap = (size_t)n;
+    }
+    RfVec3 *dst = normals ? r->nbuf : r->vbuf;
+    for (int i = 0; i < n; i++) {
+        RfStatus st = rf_lex_vec3(&r->lx, what, &dst[i]);
+        if (st)
+            return st;
+    }
+    return RF_OK;
+}
+
+static RfStatus read_primitive(RfReader *r, const RfToken *kw)
+{
+    RfLexer *lx = &r->lx;
+    RfPrimitive p;
+    RfToken a;
+    int n = 0, normals = 0;
+    RfStatus st = rf__reader_default_material(lx, r->scene, kw, &r->material);
+    if (st)
+        return st;
+    memset(&p, 0, sizeof p);
+    p.material = r->material;
+    p.flags = RF_PRIM_TWO_SIDED;
+    p.loc = loc_of(kw);
+    if (rf_lex_is(kw, "sphere")) {
+        p.type = RF_PRIM_SPHERE;
+        if (!(st = rf_lex_vec3(lx, "sphere centre", &p.u.sphere.center)))
+            st = rf_lex_number(lx, "sphere radius", &p.u.sphere.radius);
+    } else if (rf_lex_is(kw, "plane")) {
+        RfVec3 point;
+        p.type = RF_PRIM_PLANE;
+        if (!(st = rf_lex_vec3(lx, "plane point", &point)) &&
+            !(st = rf_lex_vec3(lx, "plane normal", &p.u.plane.normal)))
+            p.u.plane.offset = rf_vec3_dot(p.u.plane.normal, point);
+    } else if (rf_lex_is(kw, "cone")) {
+        p.type = RF_PRIM_CONE;
+        if (!(st = rf_lex_vec3(lx, "cone base", &p.u.cone.base)) &&
+            !(st = rf_lex_number_ge(lx, "cone base radius", 0.0, &p.u.cone.base_radius)) &&
+            !(st = rf_lex_vec3(lx, "cone apex", &p.u.cone.apex)))
+            st = rf_lex_number_ge(lx, "cone apex radius", 0.0, &p.u.cone.apex_radius);
+    } else if (rf_lex_is(kw, "cylinder")) {
+        p.type = RF_PRIM_CONE;
+        if (!(st = rf_lex_vec3(lx, "cylinder base", &p.u.cone.base)) &&
+            !(st = rf_lex_vec3(lx, "cylinder apex", &p.u.cone.apex)) &&
+            !(st = rf_lex_number_ge(lx, "cylinder radius", 0.0, &p.u.cone.base_radius)))
+            p.u.cone.apex_radius = p.u.cone.base_radius;
+    } else if (rf_lex_is(kw, "triangle")) {
+        p.type = RF_PRIM_TRIANGLE;
+        n = 3;
+        st = read_points(r, 0, n, "triangle vertex");
+    } else {
+        p.type = RF_PRIM_POLYGON;
+        if (!(st = rf_lex_int(lx, "polygon vertex count", 3, RF_MAX_POLY_VERTICES, &n)))
+            st = read_points(r, 0, n, "polygon vertex");
+    }
+    while (!st && next_attr(lx, &a)) {
+        if (rf_lex_is(&a, "material")) {
+            st = read_material_ref(r, &p.material);
+        } else if (rf_lex_is(&a, "two-sided")) {
+            p.flags = (p.flags & ~(unsigned)RF_PRIM_INSIDE) | RF_PRIM_TWO_SIDED;
+        } else if (rf_lex_is(&a, "one-sided")) {
+            p.flags &= ~(unsigned)(RF_PRIM_TWO_SIDED | RF_PRIM_INSIDE);
+        } else if (rf_lex_is(&a, "inside") && (p.type == RF_PRIM_SPHERE || p.type == RF_PRIM_CONE)) {
+            p.flags = (p.flags & ~(unsigned)RF_PRIM_TWO_SIDED) | RF_PRIM_INSIDE;
+        } else if (rf_lex_is(&a, "normals") && n > 0) {
+            st = read_points(r, 1, n, "vertex normal");
+            normals = 1;
+        } else {
+            return bad_attr(lx, kw, &a);
+        }
+    }
+    if (st)
+        return st;
+    if (n > 0) {
+        p.u.poly.count = n;
+        if (normals)
+            p.flags |= RF_PRIM_VERTEX_NORMALS;
+        if (rf_scene_add_vertices(r->scene, r->vbuf, normals ? r->nbuf : NULL, n, &p.u.poly.first,
+                                  &p.u.poly.nfirst))
+            return rf_lex_error(lx, kw->line, kw->col, "out of memory");
+    }
+    return rf__reader_add_prim(lx, r->scene, &p);
+}
+
+static RfStatus read_statement(RfReader *r, const RfToken *kw)
+{
+    RfLexer *lx = &r->lx;
+    RfRenderSettings *rs = &r->scene->render;
+    RfStatus st;
+    char q[96];
+    if (rf_lex_is(kw, "camera"))
+        return read_camera(r, kw);
+    if (rf_lex_is(kw, "material"))
+        return read_material(r, kw);
+    if (rf_lex_is(kw, "light"))
+        return read_light(r, kw);
+    if (rf_lex_is(kw, "sphere") || rf_lex_is(kw, "plane") || rf_lex_is(kw, "triangle") ||
+        rf_lex_is(kw, "polygon") || rf_lex_is(kw, "cone") || rf_lex_is(kw, "cylinder"))
+        return read_primitive(r, kw);
+    if (rf_lex_is(kw, "use"))
+        st = read_material_ref(r, &r->material);
+    else if (rf_lex_is(kw, "resolution")) {
+        if (!(st = rf_lex_int(lx, "resolution width", 1, 65536, &rs->width)))
+            st = rf_lex_int(lx, "resolution height", 1, 65536, &rs->height);
+    } else if (rf_lex_is(kw, "depth"))
+        st = rf_lex_int(lx, "depth", 1, 1000, &rs->max_depth);
+    else if (rf_lex_is(kw, "threshold")) {
+        if (!(st = rf_lex_number_ge(lx, "threshold", 0.0, &rs->min_contribution)))
+            st = rf_lex_check(lx, rs->min_contribution <= 1.0, "threshold must be in [0, 1]");
+    } else if (rf_lex_is(kw, "samples"))
+        st = rf_lex_int(lx, "samples", 1, 1 << 20, &rs->samples);
+    else if (rf_lex_is(kw, "background"))
+        st = read_colour(lx, "background", &rs->background);
+    else if (rf_lex_is(kw, "ambient"))
+        st = read_colour(lx, "ambient", &rs->ambient);
+    else
+        return rf_lex_error(lx, kw->line, kw->col, "unknown keyword %s",
+                            rf_lex_quote(kw, q, sizeof q));
+    return st ? st : no_attrs(lx, kw);
+}
+
+RfStatus rf_scene_read_rf(const char *name, const char *text, size_t len, RfScene *scene,
+                          char *err, size_t errsz)
+{
+    RfReader r;
+    RfStatus st = RF_OK;
+    char q[96];
+    memset(&r, 0, sizeof r);
+    r.scene = scene;
+    r.material = -1;
+    rf_scene_init(scene);
+    scene->format = RF_FORMAT_RF;
+    rf_lex_init(&r.lx, name, text, len, err, errsz);
+    while (!st && r.lx.tok.kind != RF_TOK_EOF) {
+        RfToken kw = r.lx.tok;
+        if (kw.kind != RF_TOK_WORD || !kw.bol) {
+            st = rf_lex_error(&r.lx, kw.line, kw.col, "expected a keyword at the start of a line, found %s",
+                              rf_lex_quote(&kw, q, sizeof q));
+            break;
+        }
+        rf_lex_advance(&r.lx);
+        st = read_statement(&r, &kw);
+    }
+    free(r.vbuf);
+    free(r.nbuf);
+    return rf__reader_finish(&r.lx, scene, st);
+}

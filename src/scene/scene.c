@@ -1,0 +1,500 @@
+/* refray: the scene model — allocation, the checks of every entity, and the feature analysis
+ * (scene.h). */
+#include "refray/scene.h"
+#include "refray/numeric.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+
+static RfStatus msgf(char *msg, size_t msgsz, RfStatus st, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+static RfStatus msgf(char *msg, size_t msgsz, RfStatus st, const char *fmt, ...)
+{
+    if (msg && msgsz) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(msg, msgsz, fmt, ap);
+        va_end(ap);
+    }
+    return st;
+}
+
+static int finite3(RfVec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
+static int finite_rgb(RfRgb c) { return isfinite(c.r) && isfinite(c.g) && isfinite(c.b); }
+static int nonneg_rgb(RfRgb c) { return finite_rgb(c) && c.r >= 0.0 && c.g >= 0.0 && c.b >= 0.0; }
+static int positive(RfRgb c) { return c.r > 0.0 || c.g > 0.0 || c.b > 0.0; }
+
+/* ---- allocation --------------------------------------------------------------------------- */
+
+void rf_scene_init(RfScene *scene)
+{
+    memset(scene, 0, sizeof *scene);
+    scene->render.width = 512;
+    scene->render.height = 512;
+    scene->render.max_depth = 8;
+    scene->render.min_contribution = 0.0;
+    scene->render.samples = 1;
+    scene->camera.d = 1.0;
+    scene->camera.fov = 45.0;
+    scene->camera.up = rf_vec3(0, 1, 0);
+    scene->camera.target = rf_vec3(0, 0, -1);
+}
+
+void rf_scene_free(RfScene *scene)
+{
+    free(scene->materials);
+    free(scene->lights);
+    free(scene->prims);
+    free(scene->vertices);
+    free(scene->normals);
+    rf_scene_init(scene);
+}
+
+/* Makes room for `extra` more elements of size elem (doubling), with overflow checks. */
+static RfStatus reserve(void **arr, size_t *cap, size_t count, size_t extra, size_t elem)
+{
+    if (extra > SIZE_MAX / elem - count)
+        return RF_ERR_NOMEM;
+    size_t need = count + extra;
+    if (need <= *cap)
+        return RF_OK;
+    size_t cap2 = *cap ? *cap : 16;
+    while (cap2 < need)
+        cap2 = cap2 > SIZE_MAX / 2 / elem ? need : cap2 * 2;
+    void *p = realloc(*arr, cap2 * elem);
+    if (!p)
+        return RF_ERR_NOMEM;
+    *arr = p;
+    *cap = cap2;
+    return RF_OK;
+}
+
+RfMaterial rf_material_default(void)
+{
+    RfMaterial m;
+    memset(&m, 0, sizeof m);
+    m.ior = 1.0;
+    m.flags = RF_MAT_SMOOTH;
+    return m;
+}
+
+RfStatus rf_scene_add_material(RfScene *scene, const RfMaterial *m, int *index)
+{
+    if (scene->material_count >= INT32_MAX)
+        return RF_ERR_NOMEM;
+    RfStatus st = reserve((void **)&scene->materials, &scene->material_cap, scene->material_count,
+                          1, sizeof *m);
+    if (st)
+        return st;
+    scene->materials[scene->material_count] = *m;
+    if (index)
+        *index = (int)scene->material_count;
+    scene->material_count++;
+    return RF_OK;
+}
+
+RfStatus rf_scene_add_light(RfScene *scene, const RfLight *light)
+{
+    RfStatus st = reserve((void **)&scene->lights, &scene->light_cap, scene->light_count, 1,
+                          sizeof *light);
+    if (st)
+        return st;
+    RfLight *l = &scene->lights[scene->light_count++];
+    *l = *light;
+    l->direction = rf_vec3_normalize(l->direction);
+    return RF_OK;
+}
+
+RfStatus rf_scene_add_vertices(RfScene *scene, const RfVec3 *v, const RfVec3 *normals, int n,
+                               size_t *first, size_t *nfirst)
+{
+    size_t k = n > 0 ? (size_t)n : 0;
+    RfStatus st = reserve((void **)&scene->vertices, &scene->vertex_cap, scene->vertex_count, k,
+                          sizeof *v);
+    if (!st && normals)
+        st = reserve((void **)&scene->normals, &scene->normal_cap, scene->normal_count, k,
+                     sizeof *normals);
+    if (st)
+        return st;
+    *first = scene->vertex_count;
+    memcpy(scene->vertices + scene->vertex_count, v, k * sizeof *v);
+    scene->vertex_count += k;
+    *nfirst = scene->normal_count;
+    if (normals) {
+        for (size_t i = 0; i < k; i++)
+            scene->normals[scene->normal_count + i] = rf_vec3_normalize(normals[i]);
+        scene->normal_count += k;
+    }
+    return RF_OK;
+}
+
+/* ---- checks ------------------------------------------------------------------------------ */
+
+/* Twice the vector area of a polygon (the sum of the fan's cross products about v[0]; equal
+ * to Newell's normal), and the largest squared distance of a vertex from v[0]. */
+static RfVec3 polygon_area_vector(const RfVec3 *v, int n, double *ext2)
+{
+    RfVec3 sum = rf_vec3(0, 0, 0);
+    *ext2 = 0.0;
+    for (int i = 1; i < n; i++) {
+        RfVec3 a = rf_vec3_sub(v[i], v[0]);
+        *ext2 = fmax(*ext2, rf_vec3_dot(a, a));
+        if (i + 1 < n)
+            sum = rf_vec3_add(sum, rf_vec3_cross(a, rf_vec3_sub(v[i + 1], v[0])));
+    }
+    return sum;
+}
+
+RfStatus rf_scene_check_primitive(const RfScene *scene, const RfPrimitive *p, char *msg,
+                                  size_t msgsz)
+{
+    const char *name = rf_prim_type_name(p->type);
+    if (p->material < 0 || (size_t)p->material >= scene->material_count)
+        return msgf(msg, msgsz, RF_ERR_DOMAIN, "%s has no valid material", name);
+    switch (p->type) {
+    case RF_PRIM_SPHERE:
+        if (!finite3(p->u.sphere.center) || !isfinite(p->u.sphere.radius))
+            return msgf(msg, msgsz, RF_ERR_DOMAIN, "sphere: values must be finite");
+        if (!(p->u.sphere.radius > 0.0))
+            return msgf(msg, msgsz, RF_ERR_DEGENERATE,
+                        "degenerate sphere: radius must be > 0, found %g",
+                        p->u.sphere.radius);
+        return RF_OK;
+    case RF_PRIM_PLANE:
+        if (!finite3(p->u.plane.normal) || !isfinite(p->u.plane.offset))
+            return msgf(msg, msgsz, RF_ERR_DOMAIN, "plane: values must be finite");
+        if (!(rf_vec3_length(p->u.plane.normal) > 0.0))
+            return msgf(msg, msgsz, RF_ERR_DEGENERATE, "degenerate plane: zero normal vector");
+        return RF_OK;
+    case RF_PRIM_TRIANGLE:
+    case RF_PRIM_POLYGON: {
+        int n = p->u.poly.count;
+        if (n < 3 || (p->type == RF_PRIM_TRIANGLE && n != 3))
+            return msgf(msg, msgsz, RF_ERR_DEGENERATE, "%s needs %s3 vertices, found %d", name,
+                        p->type == RF_PRIM_TRIANGLE ? "" : "at least ", n);
+        if (p->u.poly.first > scene->vertex_count || (size_t)n > scene->vertex_count - p->u.poly.first)
+            return msgf(msg, msgsz, RF_ERR_DOMAIN, "%s: vertex range out of bounds", name);
+        const RfVec3 *v = scene->vertices + p->u.poly.first;
+        for (int i = 0; i < n; i++)
+            if (!finite3(v[i]))
+                return msgf(msg, msgsz, RF_ERR_DOMAIN, "%s: vertex %d is not finite", name, i + 1);
+        double ext2;
+        RfVec3 nv = polygon_area_vector(v, n, &ext2);
+        if (!(rf_vec3_length(nv) > RF_SCENE_DEGENERATE_REL * ext2))
+            return msgf(msg, msgsz, RF_ERR_DEGENERATE,
+                        "degenerate %s: its vertices are collinear (zero area)", name);
+        if (p->flags & RF_PRIM_VERTEX_NORMALS) {
+            if (p->u.poly.nfirst > scene->normal_count ||
+                (size_t)n > scene->normal_count - p->u.poly.nfirst)
+                return msgf(msg, msgsz, RF_ERR_DOMAIN, "%s: normal range out of bounds", name);
+            const RfVec3 *vn = scene->normals + p->u.poly.nfirst;
+            for (int i = 0; i < n; i++)
+                if (!finite3(vn[i]) || !(rf_vec3_length(vn[i]) > 0.0))
+                    return msgf(msg, msgsz, RF_ERR_DEGENERATE,
+                                "%s: normal of vertex %d has zero length", name, i + 1);
+        }
+        return RF_OK;
+    }
+    case RF_PRIM_CONE: {
+        double rb = p->u.cone.base_radius, ra = p->u.cone.apex_radius;
+        if (!finite3(p->u.cone.base) || !finite3(p->u.cone.apex) || !isfinite(rb) || !isfinite(ra))
+            return msgf(msg, msgsz, RF_ERR_DOMAIN, "cone: values must be finite");
+        if (rb < 0.0 || ra < 0.0)
+            return msgf(msg, msgsz, RF_ERR_DOMAIN, "cone radii must be >= 0");
+        if (!(rf_vec3_length(rf_vec3_sub(p->u.cone.apex, p->u.cone.base)) > 0.0))
+            return msgf(msg, msgsz, RF_ERR_DEGENERATE, "degenerate cone: base and apex coincide");
+        if (!(rb > 0.0 || ra > 0.0))
+            return msgf(msg, msgsz, RF_ERR_DEGENERATE, "degenerate cone: both radii are zero");
+        return RF_OK;
+    }
+    case RF_PRIM_TYPE_COUNT:
+        break;
+    }
+    return msgf(msg, msgsz, RF_ERR_DOMAIN, "unknown primitive type %d", (int)p->type);
+}
+
+/* 0 when some corner turns against the polygon's normal: the SPD gears' faces are not convex
+ * although NFF promises convex polygons, so the intersector needs this hint. */
+static int polygon_is_convex(const RfVec3 *v, int n)
+{
+    double ext2;
+    RfVec3 nv = polygon_area_vector(v, n, &ext2);
+    double tol = RF_SCENE_DEGENERATE_REL * rf_vec3_length(nv) * ext2;
+    for (int i = 0; i < n; i++) {
+        RfVec3 e0 = rf_vec3_sub(v[(i + 1) % n], v[i]);
+        RfVec3 e1 = rf_vec3_sub(v[(i + 2) % n], v[(i + 1) % n]);
+        if (rf_vec3_dot(rf_vec3_cross(e0, e1), nv) < -tol)
+            return 0;
+    }
+    return 1;
+}
+
+RfStatus rf_scene_add_primitive(RfScene *scene, const RfPrimitive *p, char *msg, size_t msgsz)
+{
+    RfStatus st = rf_scene_check_primitive(scene, p, msg, msgsz);
+    if (st)
+        return st;
+    st = reserve((void **)&scene->prims, &scene->prim_cap, scene->prim_count, 1, sizeof *p);
+    if (st)
+        return msgf(msg, msgsz, st, "out of memory");
+    RfPrimitive *q = &scene->prims[scene->prim_count++];
+    *q = *p;
+    q->flags &= ~(unsigned)RF_PRIM_NONCONVEX;
+    if (q->type == RF_PRIM_PLANE) {
+        double len = rf_vec3_length(q->u.plane.normal);
+        q->u.plane.normal = rf_vec3_scale(q->u.plane.normal, 1.0 / len);
+        q->u.plane.offset /= len;
+    }
+    if (q->type == RF_PRIM_POLYGON &&
+        !polygon_is_convex(scene->vertices + q->u.poly.first, q->u.poly.count))
+        q->flags |= RF_PRIM_NONCONVEX;
+    return RF_OK;
+}
+
+RfStatus rf_scene_camera_check(const RfSceneCamera *cam, RfSrcLoc *loc, char *msg, size_t msgsz)
+{
+    *loc = cam->loc;
+    if (!finite3(cam->eye) || !finite3(cam->target) || !finite3(cam->up))
+        return msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: values must be finite");
+    RfVec3 dir = rf_vec3_sub(cam->target, cam->eye);
+    double ld = rf_vec3_length(dir), lu = rf_vec3_length(cam->up);
+    if (!(ld > 0.0)) {
+        *loc = cam->target_loc;
+        return msgf(msg, msgsz, RF_ERR_DEGENERATE, "camera: eye and target coincide");
+    }
+    if (!(lu > 0.0)) {
+        *loc = cam->up_loc;
+        return msgf(msg, msgsz, RF_ERR_DEGENERATE, "camera: up vector has zero length");
+    }
+    if (!(rf_vec3_length(rf_vec3_cross(dir, cam->up)) > RF_SCENE_DEGENERATE_REL * ld * lu)) {
+        *loc = cam->up_loc;
+        return msgf(msg, msgsz, RF_ERR_DEGENERATE,
+                    "camera: up vector is parallel to the view direction");
+    }
+    if (!(cam->d > 0.0) || !isfinite(cam->d))
+        return msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: image-plane distance d must be > 0");
+    if (!(cam->hither >= 0.0) || !isfinite(cam->hither))
+        return msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: hither must be >= 0");
+    if (cam->has_window) {
+        if (!isfinite(cam->l) || !isfinite(cam->r) || !isfinite(cam->b) || !isfinite(cam->t) ||
+            !(cam->l < cam->r) || !(cam->b < cam->t))
+            return msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: window needs l < r and b < t");
+    } else if (!(cam->fov > 0.0 && cam->fov < 180.0)) {
+        return msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: field of view must be in (0, 180) degrees");
+    }
+    return RF_OK;
+}
+
+RfWindow rf_scene_camera_window(const RfSceneCamera *cam, int width, int height)
+{
+    RfWindow w;
+    w.d = cam->d;
+    if (cam->has_window) {
+        w.l = cam->l;
+        w.r = cam->r;
+        w.b = cam->b;
+        w.t = cam->t;
+        return w;
+    }
+    double t = cam->d * tan(cam->fov * (RF_PI / 360.0));
+    if (cam->fov_reading == RF_FOV_PIXEL_CENTRES && height > 1)
+        t *= (double)height / (double)(height - 1); /* centre-to-centre span is H - 1 pixels */
+    w.t = t;
+    w.b = -t;
+    w.r = t * (double)width / (double)height;
+    w.l = -w.r;
+    return w;
+}
+
+static RfStatus check_light(const RfLight *l, char *msg, size_t msgsz)
+{
+    if (!finite3(l->position) || !finite3(l->direction) || !nonneg_rgb(l->intensity))
+        return msgf(msg, msgsz, RF_ERR_DOMAIN, "light: values must be finite, intensity >= 0");
+    if (l->kind != RF_LIGHT_POINT && !(rf_vec3_length(l->direction) > 0.0))
+        return msgf(msg, msgsz, RF_ERR_DEGENERATE, "light: direction has zero length");
+    if (l->kind == RF_LIGHT_SPOT && (!(l->spot_cutoff > 0.0 && l->spot_cutoff <= 90.0) ||
+                                     !(l->spot_exponent >= 0.0) || !isfinite(l->spot_exponent)))
+        return msgf(msg, msgsz, RF_ERR_DOMAIN,
+                    "spot light: cutoff must be in (0, 90] degrees, exponent >= 0");
+    return RF_OK;
+}
+
+static RfStatus check_material(const RfMaterial *m, char *msg, size_t msgsz)
+{
+    const RfRgb *c[] = {&m->ka, &m->kd, &m->ks, &m->kr, &m->kt, &m->emission};
+    for (size_t i = 0; i < sizeof c / sizeof c[0]; i++)
+        if (!nonneg_rgb(*c[i]))
+            return msgf(msg, msgsz, RF_ERR_DOMAIN, "material: coefficients must be finite, >= 0");
+    if (!(m->shininess >= 0.0) || !isfinite(m->shininess) || !(m->ior > 0.0) || !isfinite(m->ior))
+        return msgf(msg, msgsz, RF_ERR_DOMAIN, "material: needs shininess >= 0 and ior > 0");
+    return RF_OK;
+}
+
+static RfStatus located(char *err, size_t errsz, const char *source, RfSrcLoc loc,
+                        const char *msg, RfStatus st)
+{
+    snprintf(err, errsz, "%s:%d:%d: %s", source ? source : "<scene>", loc.line, loc.col, msg);
+    return st;
+}
+
+RfStatus rf_scene_validate(const RfScene *scene, const char *source, char *err, size_t errsz)
+{
+    char msg[256];
+    RfSrcLoc loc = {1, 1};
+    RfStatus st;
+    const RfRenderSettings *r = &scene->render;
+    if (!scene->has_camera)
+        return located(err, errsz, source, loc, "the scene has no camera", RF_ERR_DOMAIN);
+    if ((st = rf_scene_camera_check(&scene->camera, &loc, msg, sizeof msg)))
+        return located(err, errsz, source, loc, msg, st);
+    if (r->width < 1 || r->height < 1 || r->max_depth < 1 || r->samples < 1 ||
+        !(r->min_contribution >= 0.0 && r->min_contribution <= 1.0) || !nonneg_rgb(r->background) ||
+        !nonneg_rgb(r->ambient))
+        return located(err, errsz, source, loc, "render settings out of range", RF_ERR_DOMAIN);
+    for (size_t i = 0; i < scene->material_count; i++)
+        if ((st = check_material(&scene->materials[i], msg, sizeof msg)))
+            return located(err, errsz, source, scene->materials[i].loc, msg, st);
+    for (size_t i = 0; i < scene->light_count; i++)
+        if ((st = check_light(&scene->lights[i], msg, sizeof msg)))
+            return located(err, errsz, source, scene->lights[i].loc, msg, st);
+    for (size_t i = 0; i < scene->prim_count; i++)
+        if ((st = rf_scene_check_primitive(scene, &scene->prims[i], msg, sizeof msg)))
+            return located(err, errsz, source, scene->prims[i].loc, msg, st);
+    return RF_OK;
+}
+
+/* ---- analysis ---------------------------------------------------------------------------- */
+
+unsigned rf_scene_features(const RfScene *scene)
+{
+    unsigned f = 0;
+    unsigned char *used = calloc(scene->material_count ? scene->material_count : 1, 1);
+    for (size_t i = 0; i < scene->prim_count; i++) {
+        const RfPrimitive *p = &scene->prims[i];
+        if (p->material < 0 || (size_t)p->material >= scene->material_count)
+            continue;
+        if (used)
+            used[p->material] = 1;
+        if ((p->flags & RF_PRIM_VERTEX_NORMALS) &&
+            (scene->materials[p->material].flags & RF_MAT_SMOOTH))
+            f |= RF_FEAT_VERTEX_NORMALS;
+    }
+    for (size_t i = 0; i < scene->material_count; i++) {
+        const RfMaterial *m = &scene->materials[i];
+        if (used && !used[i])
+            continue;
+        if (positive(m->kr))
+            f |= RF_FEAT_REFLECTION;
+        if (positive(m->kt))
+            f |= RF_FEAT_TRANSMISSION;
+        if ((m->flags & RF_MAT_FRESNEL) && (positive(m->kr) || positive(m->kt)))
+            f |= RF_FEAT_FRESNEL;
+        if (positive(m->ks))
+            f |= RF_FEAT_SPECULAR;
+        if (positive(rf_rgb_mul(m->ka, scene->render.ambient)))
+            f |= RF_FEAT_AMBIENT;
+        if (positive(m->emission))
+            f |= RF_FEAT_EMISSION;
+    }
+    free(used);
+    for (size_t i = 0; i < scene->light_count; i++) {
+        const RfLight *l = &scene->lights[i];
+        if (l->kind != RF_LIGHT_DIRECTIONAL && l->falloff == RF_FALLOFF_INVERSE_SQUARE)
+            f |= RF_FEAT_LIGHT_FALLOFF;
+        if (l->kind == RF_LIGHT_SPOT)
+            f |= RF_FEAT_SPOT_LIGHTS;
+    }
+    return f;
+}
+
+const char *rf_feature_name(unsigned bit)
+{
+    switch (bit) {
+    case RF_FEAT_REFLECTION: return "reflection";
+    case RF_FEAT_TRANSMISSION: return "transmission";
+    case RF_FEAT_FRESNEL: return "fresnel";
+    case RF_FEAT_SPECULAR: return "specular";
+    case RF_FEAT_AMBIENT: return "ambient";
+    case RF_FEAT_EMISSION: return "emission";
+    case RF_FEAT_VERTEX_NORMALS: return "vertex-normals";
+    case RF_FEAT_LIGHT_FALLOFF: return "light-falloff";
+    case RF_FEAT_SPOT_LIGHTS: return "spot-lights";
+    case RF_FEAT_AREA_LIGHTS: return "area-lights";
+    case RF_FEAT_MOTION: return "motion";
+    case RF_FEAT_APERTURE: return "aperture";
+    }
+    return NULL;
+}
+
+const char *rf_prim_type_name(RfPrimType type)
+{
+    switch (type) {
+    case RF_PRIM_SPHERE: return "sphere";
+    case RF_PRIM_PLANE: return "plane";
+    case RF_PRIM_TRIANGLE: return "triangle";
+    case RF_PRIM_POLYGON: return "polygon";
+    case RF_PRIM_CONE: return "cone";
+    case RF_PRIM_TYPE_COUNT: break;
+    }
+    return "primitive";
+}
+
+const char *rf_light_kind_name(RfLightKind kind)
+{
+    switch (kind) {
+    case RF_LIGHT_POINT: return "point";
+    case RF_LIGHT_DIRECTIONAL: return "directional";
+    case RF_LIGHT_SPOT: return "spot";
+    case RF_LIGHT_KIND_COUNT: break;
+    }
+    return "light";
+}
+
+static void grow_box(RfVec3 *lo, RfVec3 *hi, RfVec3 c, double r)
+{
+    lo->x = fmin(lo->x, c.x - r);
+    lo->y = fmin(lo->y, c.y - r);
+    lo->z = fmin(lo->z, c.z - r);
+    hi->x = fmax(hi->x, c.x + r);
+    hi->y = fmax(hi->y, c.y + r);
+    hi->z = fmax(hi->z, c.z + r);
+}
+
+int rf_scene_bounds(const RfScene *scene, RfVec3 *lo, RfVec3 *hi)
+{
+    *lo = rf_vec3(INFINITY, INFINITY, INFINITY);
+    *hi = rf_vec3(-INFINITY, -INFINITY, -INFINITY);
+    int any = 0;
+    for (size_t i = 0; i < scene->prim_count; i++) {
+        const RfPrimitive *p = &scene->prims[i];
+        switch (p->type) {
+        case RF_PRIM_SPHERE:
+            grow_box(lo, hi, p->u.sphere.center, p->u.sphere.radius);
+            any = 1;
+            break;
+        case RF_PRIM_TRIANGLE:
+        case RF_PRIM_POLYGON:
+            for (int k = 0; k < p->u.poly.count; k++)
+                grow_box(lo, hi, scene->vertices[p->u.poly.first + (size_t)k], 0.0);
+            any = 1;
+            break;
+        case RF_PRIM_CONE:
+            grow_box(lo, hi, p->u.cone.base, p->u.cone.base_radius);
+            grow_box(lo, hi, p->u.cone.apex, p->u.cone.apex_radius);
+            any = 1;
+            break;
+        case RF_PRIM_PLANE:
+        case RF_PRIM_TYPE_COUNT:
+            break;
+        }
+    }
+    return any;
+}
