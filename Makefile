@@ -20,7 +20,9 @@ comma := ,
 SANFLAGS := $(if $(SAN),-fsanitize=address$(comma)undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
 # -ffp-contract=off: results must not depend on the compiler fusing a*b+c (DESIGN.md)
 CFLAGS_ALL = -std=c99 -D_POSIX_C_SOURCE=200809L $(OPT) -Wall -Wextra -Wpedantic -Werror \
-             -ffp-contract=off -pthread -Iinclude $(PKG_CFLAGS) $(SANFLAGS) $(CFLAGS)
+             -ffp-contract=off -pthread -Iinclude -I$(BUILD)/gen $(PKG_CFLAGS) $(SANFLAGS) $(CFLAGS)
+# the flags that decide numeric results, recorded in every EXR the renderer writes
+NUMERIC_FLAGS = -std=c99 $(OPT) -ffp-contract=off $(SANFLAGS) $(CFLAGS)
 LDFLAGS_ALL = -pthread $(SANFLAGS) $(LDFLAGS)
 LDLIBS_ALL  = $(PKG_LIBS) -lm $(LDLIBS)
 
@@ -51,7 +53,11 @@ $(BUILD)/config.mk: tools/deps.sh Makefile
 # V=1 shows the full commands
 Q := $(if $(V),,@)
 
-$(BUILD)/obj/%.o: %.c
+$(BUILD)/gen/build_info.h: $(BUILD)/config.mk
+	@mkdir -p $(dir $@)
+	@echo '#define RF_BUILD_FLAGS "$(strip $(NUMERIC_FLAGS))"' > $@.tmp && mv $@.tmp $@
+
+$(BUILD)/obj/%.o: %.c | $(BUILD)/gen/build_info.h
 	@mkdir -p $(dir $@)
 	@$(if $(Q),echo "  CC      $<")
 	$(Q)$(CC) $(CFLAGS_ALL) -MMD -MP -c $< -o $@

@@ -30,4 +30,13 @@
  */
 #define RF_SCENE_DEGENERATE_REL 1e-12
 
+/* Self-intersection (§3.8): a shadow, reflected or refracted ray starts at the hit point moved
+ * off the surface, along the geometric normal to the side it leaves by, by
+ * RF_RAY_OFFSET_REL * max(1, max_i |p_i|). The hit point carries a rounding error of a few ulps
+ * of its largest coordinate (2.2e-16 relative; the stable sphere and watertight triangle tests
+ * keep t to a few ulps), so 1e-9 is ~10^6 times that error and still far below any feature a
+ * scene draws (1e-9 of the scene's extent). tests/test_render.c checks that no secondary ray
+ * re-hits its own surface over scales 1e-3 .. 1e6. */
+#define RF_RAY_OFFSET_REL 1e-9
+
 #endif

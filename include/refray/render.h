@@ -1,0 +1,56 @@
+/* refray: the Whitted-style ray tracer of §3.3-3.8 — primary rays through the §3.4 camera,
+ * nearest hits through a BVH, Phong illumination per light with shadow rays, mirror reflection
+ * and Snell refraction (with Fresnel where the material asks), to a depth limit and a
+ * contribution threshold. Threads over tiles; the image does not depend on the thread count. */
+#ifndef REFRAY_RENDER_H
+#define REFRAY_RENDER_H
+
+#include <stdint.h>
+
+#include "refray/image.h"
+#include "refray/parallel.h"
+#include "refray/scene.h"
+#include "refray/status.h"
+
+typedef struct {
+    int width, height;   /* 0: the scene's */
+    int max_depth;       /* 0: the scene's; the primary ray is depth 1 */
+    int samples;         /* per pixel, 0: the scene's. 1: the pixel centre; k*k: stratified
+                            k x k jitter; otherwise uniform jitter. Box filter. */
+    int threads;         /* 0: every core */
+    int local_only;      /* 1: primary rays and local Phong only (no shadows, reflection,
+                            refraction): the comparator's matching mode */
+    uint64_t seed;       /* of the counter-based random numbers (jitter) */
+    RfProgressFn progress; /* called after each tile (may be NULL) */
+    void *progress_ctx;
+} RfRenderOptions;
+
+RfRenderOptions rf_render_options_default(void);
+
+typedef struct {
+    uint64_t primary_rays, shadow_rays, secondary_rays;
+    int width, height, samples, max_depth, threads;
+    unsigned features;   /* rf_scene_features of the scene */
+} RfRenderStats;
+
+/* The prepared scene: acceleration structure and per-primitive data. Immutable once built, so
+ * any number of threads trace through it at once. */
+typedef struct RfTracer RfTracer;
+
+RfStatus rf_tracer_create(const RfScene *scene, RfTracer **out);
+void rf_tracer_free(RfTracer *tracer);
+
+/* The nearest hit along a ray (t in (t_min, t_max)); returns the primitive index or -1. */
+typedef struct {
+    double t;
+    int prim;
+    RfVec3 point, normal;   /* geometric normal, unit, facing the side the ray came from */
+    RfVec3 shading_normal;  /* interpolated (smooth materials) or = normal, same side */
+    int front;              /* 1 when the ray hit the outward / counter-clockwise side */
+} RfSurfaceHit;
+int rf_tracer_intersect(const RfTracer *tracer, RfRay ray, double t_min, double t_max, RfSurfaceHit *hit);
+
+/* Renders the scene into img (allocated here, RGB float, linear). */
+RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *img, RfRenderStats *stats);
+
+#endif

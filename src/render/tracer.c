@@ -1,0 +1,509 @@
+/* The Whitted-style tracer (render.h): scene preparation, nearest-hit queries, shading. */
+#include "refray/render.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "refray/bvh.h"
+#include "refray/camera.h"
+#include "refray/intersect.h"
+#include "refray/numeric.h"
+#include "refray/optics.h"
+#include "refray/rng.h"
+#include "refray/shading.h"
+
+/* One thing the BVH holds: a primitive, or one fan triangle (sub >= 0) of a convex polygon
+ * (triangle v0, v(sub+1), v(sub+2)). */
+typedef struct {
+    int prim, sub;
+} Item;
+
+struct RfTracer {
+    const RfScene *scene;
+    RfBvh bvh;
+    Item *items;       /* bounded items, indexed by the BVH */
+    int item_count;
+    int *planes;       /* unbounded primitives, tested for every ray */
+    int plane_count;
+    RfVec3 *poly_normal; /* per primitive: unit normal of a non-convex polygon (Newell) */
+};
+
+static double rgb_max(RfRgb c) { return fmax(c.r, fmax(c.g, c.b)); }
+
+RfRenderOptions rf_render_options_default(void)
+{
+    RfRenderOptions o;
+    memset(&o, 0, sizeof o);
+    o.seed = 1;
+    return o;
+}
+
+/* ---- preparation ---- */
+
+static RfVec3 vertex(const RfScene *s, const RfPrimitive *p, int k)
+{
+    return s->vertices[p->u.poly.first + (size_t)k];
+}
+
+static RfAabb item_box(const RfScene *s, Item it)
+{
+    const RfPrimitive *p = &s->prims[it.prim];
+    RfAabb b = rf_aabb_empty();
+    switch (p->type) {
+    case RF_PRIM_SPHERE: {
+        RfVec3 r = rf_vec3(p->u.sphere.radius, p->u.sphere.radius, p->u.sphere.radius);
+        b.lo = rf_vec3_sub(p->u.sphere.center, r);
+        b.hi = rf_vec3_add(p->u.sphere.center, r);
+        break;
+    }
+    case RF_PRIM_TRIANGLE:
+    case RF_PRIM_POLYGON:
+        if (it.sub >= 0) {
+            b = rf_aabb_add_point(b, vertex(s, p, 0));
+            b = rf_aabb_add_point(b, vertex(s, p, it.sub + 1));
+            b = rf_aabb_add_point(b, vertex(s, p, it.sub + 2));
+        } else {
+            for (int k = 0; k < p->u.poly.count; k++)
+                b = rf_aabb_add_point(b, vertex(s, p, k));
+        }
+        break;
+    case RF_PRIM_CONE: {
+        /* each end disc lies in the cube of its radius around its centre */
+        RfVec3 rb = rf_vec3(p->u.cone.base_radius, p->u.cone.base_radius, p->u.cone.base_radius);
+        RfVec3 ra = rf_vec3(p->u.cone.apex_radius, p->u.cone.apex_radius, p->u.cone.apex_radius);
+        b = rf_aabb_add_point(b, rf_vec3_sub(p->u.cone.base, rb));
+        b = rf_aabb_add_point(b, rf_vec3_add(p->u.cone.base, rb));
+        b = rf_aabb_add_point(b, rf_vec3_sub(p->u.cone.apex, ra));
+        b = rf_aabb_add_point(b, rf_vec3_add(p->u.cone.apex, ra));
+        break;
+    }
+    default:
+        break;
+    }
+    return b;
+}
+
+void rf_tracer_free(RfTracer *t)
+{
+    if (!t)
+        return;
+    rf_bvh_free(&t->bvh);
+    free(t->items);
+    free(t->planes);
+    free(t->poly_normal);
+    free(t);
+}
+
+RfStatus rf_tracer_create(const RfScene *scene, RfTracer **out)
+{
+    RfTracer *t = calloc(1, sizeof *t);
+    size_t n_items = 0;
+    *out = NULL;
+    if (!t)
+        return RF_ERR_NOMEM;
+    t->scene = scene;
+    for (size_t i = 0; i < scene->prim_count; i++) {
+        const RfPrimitive *p = &scene->prims[i];
+        if (p->type == RF_PRIM_POLYGON && !(p->flags & RF_PRIM_NONCONVEX))
+            n_items += (size_t)p->u.poly.count - 2;
+        else if (p->type != RF_PRIM_PLANE)
+            n_items++;
+        else
+            t->plane_count++;
+    }
+    if (n_items > (size_t)INT32_MAX / 2) {
+        rf_tracer_free(t);
+        return RF_ERR_NOMEM;
+    }
+    t->items = malloc(sizeof *t->items * (n_items ? n_items : 1));
+    t->planes = malloc(sizeof *t->planes * (size_t)(t->plane_count ? t->plane_count : 1));
+    t->poly_normal = calloc(scene->prim_count ? scene->prim_count : 1, sizeof *t->poly_normal);
+    RfAabb *boxes = malloc(sizeof *boxes * (n_items ? n_items : 1));
+    if (!t->items || !t->planes || !t->poly_normal || !boxes) {
+        free(boxes);
+        rf_tracer_free(t);
+        return RF_ERR_NOMEM;
+    }
+    t->plane_count = 0;
+    for (size_t i = 0; i < scene->prim_count; i++) {
+        const RfPrimitive *p = &scene->prims[i];
+        Item it = {(int)i, -1};
+        if (p->type == RF_PRIM_PLANE) {
+            t->planes[t->plane_count++] = (int)i;
+        } else if (p->type == RF_PRIM_POLYGON && !(p->flags & RF_PRIM_NONCONVEX)) {
+            for (int k = 0; k + 2 < p->u.poly.count; k++) {
+                it.sub = k;
+                boxes[t->item_count] = item_box(scene, it);
+                t->items[t->item_count++] = it;
+            }
+        } else {
+            if (p->type == RF_PRIM_TRIANGLE)
+                it.sub = 0;
+            if (p->type == RF_PRIM_POLYGON) { /* Newell's normal of the whole polygon */
+                RfVec3 n = rf_vec3(0, 0, 0);
+                for (int k = 0; k < p->u.poly.count; k++) {
+                    RfVec3 a = vertex(scene, p, k), b = vertex(scene, p, (k + 1) % p->u.poly.count);
+                    n = rf_vec3_add(n, rf_vec3_cross(a, b));
+                }
+                t->poly_normal[i] = rf_vec3_normalize(n);
+            }
+            boxes[t->item_count] = item_box(scene, it);
+            t->items[t->item_count++] = it;
+        }
+    }
+    RfStatus st = rf_bvh_build(&t->bvh, boxes, t->item_count);
+    free(boxes);
+    if (st != RF_OK) {
+        rf_tracer_free(t);
+        return st;
+    }
+    *out = t;
+    return RF_OK;
+}
+
+/* ---- intersection ---- */
+
+/* Crossing-number test of the hit point against a (possibly non-convex) polygon, projected
+ * onto the coordinate plane where its normal's largest component is dropped. */
+static int inside_polygon(const RfScene *s, const RfPrimitive *p, RfVec3 n, RfVec3 q)
+{
+    int drop = fabs(n.x) > fabs(n.y) ? (fabs(n.x) > fabs(n.z) ? 0 : 2) : (fabs(n.y) > fabs(n.z) ? 1 : 2);
+    int inside = 0, count = p->u.poly.count;
+#define PU(v) (drop == 0 ? (v).y : (v).x)
+#define PV(v) (drop == 2 ? (v).y : (v).z)
+    double qu = PU(q), qv = PV(q);
+    for (int k = 0, j = count - 1; k < count; j = k++) {
+        RfVec3 a = vertex(s, p, k), b = vertex(s, p, j);
+        if ((PV(a) > qv) != (PV(b) > qv) &&
+            qu < (PU(b) - PU(a)) * (qv - PV(a)) / (PV(b) - PV(a)) + PU(a))
+            inside = !inside;
+    }
+#undef PU
+#undef PV
+    return inside;
+}
+
+typedef struct {
+    const RfTracer *tracer;
+    RfWatertightRay wr;
+    int shadow;    /* shadow rays: every surface blocks, whichever side */
+    Item item;     /* the item hit last */
+    RfHit hit;
+} Query;
+
+/* Intersects one item; on a hit in [t_min, *t_max) lowers *t_max and keeps the hit. */
+static int hit_item(Query *q, Item it, RfRay ray, double t_min, double *t_max)
+{
+    const RfScene *s = q->tracer->scene;
+    const RfPrimitive *p = &s->prims[it.prim];
+    RfHit h;
+    int ok = 0;
+    switch (p->type) {
+    case RF_PRIM_SPHERE: {
+        ok = rf_intersect_sphere(ray, p->u.sphere, RF_SPHERE_STABLE, t_min, *t_max, &h);
+        break;
+    }
+    case RF_PRIM_PLANE: {
+        ok = rf_intersect_plane(ray, p->u.plane, t_min, *t_max, &h);
+        break;
+    }
+    case RF_PRIM_TRIANGLE:
+    case RF_PRIM_POLYGON:
+        if (it.sub >= 0) {
+            RfTriangle tri = {vertex(s, p, 0), vertex(s, p, it.sub + 1), vertex(s, p, it.sub + 2)};
+            ok = rf_intersect_triangle_watertight(&q->wr, tri, t_min, *t_max, &h);
+        } else {
+            RfVec3 n = q->tracer->poly_normal[it.prim];
+            RfPlane pl = {n, rf_vec3_dot(n, vertex(s, p, 0))};
+            ok = rf_intersect_plane(ray, pl, t_min, *t_max, &h) && inside_polygon(s, p, n, rf_ray_at(ray, h.t));
+        }
+        break;
+    case RF_PRIM_CONE: {
+        ok = rf_intersect_cone(ray, p->u.cone, t_min, *t_max, &h);
+        break;
+    }
+    default:
+        break;
+    }
+    if (!ok)
+        return 0;
+    if (!q->shadow && !(p->flags & RF_PRIM_TWO_SIDED)) {
+        /* one-sided: visible only from the front (outside, counter-clockwise side), or only
+         * from the inside for RF_PRIM_INSIDE */
+        int front = rf_vec3_dot(ray.dir, h.normal) < 0.0;
+        if (front == !!(p->flags & RF_PRIM_INSIDE))
+            return 0;
+    }
+    *t_max = h.t;
+    q->hit = h;
+    q->item = it;
+    return 1;
+}
+
+static int bvh_leaf(void *ctx, int index, RfRay ray, double t_min, double *t_max)
+{
+    Query *q = ctx;
+    return hit_item(q, q->tracer->items[index], ray, t_min, t_max);
+}
+
+/* The nearest (or, shadow = 1, any) hit in [t_min, t_max); returns 1 with q->hit/q->item. */
+static int trace_query(const RfTracer *t, Query *q, RfRay ray, double t_min, double t_max)
+{
+    int found = 0;
+    q->tracer = t;
+    q->wr = rf_watertight_ray(ray);
+    for (int i = 0; i < t->plane_count; i++) {
+        Item it = {t->planes[i], -1};
+        if (hit_item(q, it, ray, t_min, &t_max)) {
+            found = 1;
+            if (q->shadow)
+                return 1;
+        }
+    }
+    if (rf_bvh_intersect(&t->bvh, ray, t_min, &t_max, bvh_leaf, q, q->shadow) >= 0)
+        found = 1;
+    return found;
+}
+
+int rf_tracer_intersect(const RfTracer *t, RfRay ray, double t_min, double t_max, RfSurfaceHit *out)
+{
+    Query q;
+    memset(&q, 0, sizeof q);
+    if (!trace_query(t, &q, ray, t_min, t_max))
+        return -1;
+    const RfScene *s = t->scene;
+    const RfPrimitive *p = &s->prims[q.item.prim];
+    out->t = q.hit.t;
+    out->prim = q.item.prim;
+    out->point = rf_ray_at(ray, q.hit.t);
+    out->front = rf_vec3_dot(ray.dir, q.hit.normal) < 0.0;
+    out->normal = out->front ? q.hit.normal : rf_vec3_neg(q.hit.normal);
+    out->shading_normal = out->normal;
+    const RfMaterial *m = &s->materials[p->material];
+    if ((p->flags & RF_PRIM_VERTEX_NORMALS) && (m->flags & RF_MAT_SMOOTH) && q.item.sub >= 0) {
+        /* §3.6.3 Phong shading: interpolate the vertex normals with the barycentric coordinates */
+        const RfVec3 *nv = s->normals + p->u.poly.nfirst;
+        RfVec3 n;
+        if (rf_interpolate_normal(nv[0], nv[q.item.sub + 1], nv[q.item.sub + 2], q.hit.l[0], q.hit.l[1],
+                                  q.hit.l[2], &n) == RF_OK) {
+            /* keep it on the side of the geometric normal the ray sees */
+            out->shading_normal = rf_vec3_dot(n, out->normal) < 0.0 ? rf_vec3_neg(n) : n;
+        }
+    }
+    return out->prim;
+}
+
+/* ---- shading ---- */
+
+typedef struct {
+    const RfTracer *tracer;
+    const RfRenderOptions *opt;
+    int max_depth;
+    double min_contribution;
+    RfRgb background, ambient;
+    RfCamera camera;
+    int width, height, samples;
+    RfImage *img;
+    RfRenderStats *per_thread; /* one per thread: no sharing on the hot path */
+} Job;
+
+/* A point moved off the surface to the side the new ray leaves by (DESIGN.md numeric policy:
+ * RF_RAY_OFFSET_REL, numeric.h), so that the new ray does not hit its own surface again. */
+static RfVec3 offset_origin(RfVec3 p, RfVec3 n, RfVec3 dir)
+{
+    double scale = fmax(1.0, fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))));
+    double eps = RF_RAY_OFFSET_REL * scale;
+    return rf_vec3_add(p, rf_vec3_scale(n, rf_vec3_dot(dir, n) >= 0.0 ? eps : -eps));
+}
+
+static int light_sample(const RfLight *l, RfVec3 point, RfLightSample *out)
+{
+    RfRgb i = (l->intensity);
+    switch (l->kind) {
+    case RF_LIGHT_POINT:
+        return rf_light_point(i, l->position, l->falloff, point, out) == RF_OK;
+    case RF_LIGHT_DIRECTIONAL:
+        *out = rf_light_directional(i, l->direction);
+        return 1;
+    case RF_LIGHT_SPOT:
+        return rf_light_spot(i, l->position, l->direction, l->spot_exponent,
+                             l->spot_cutoff * (RF_PI / 180.0), l->falloff, point, out) == RF_OK;
+    default:
+        return 0;
+    }
+}
+
+static RfRgb trace(const Job *job, RfRay ray, int depth, double weight, RfRenderStats *st)
+{
+    const RfTracer *t = job->tracer;
+    const RfScene *s = t->scene;
+    RfSurfaceHit h;
+    if (rf_tracer_intersect(t, ray, 0.0, HUGE_VAL, &h) < 0)
+        return job->background;
+    const RfMaterial *m = &s->materials[s->prims[h.prim].material];
+    RfVec3 v = rf_vec3_neg(rf_vec3_normalize(ray.dir));
+    RfVec3 n = h.shading_normal;
+    RfRgb kd = (m->kd), ks = (m->ks), zero = rf_rgb(0, 0, 0);
+    /* §3.6.2: emission + ka I_a + sum over lights of the diffuse and specular terms */
+    RfRgb color = rf_rgb_add((m->emission), rf_rgb_mul((m->ka), job->ambient));
+    for (size_t li = 0; li < s->light_count; li++) {
+        RfLightSample ls;
+        if (!light_sample(&s->lights[li], h.point, &ls) || rgb_max(ls.i) <= 0.0)
+            continue;
+        if (rf_vec3_dot(h.normal, ls.l) <= 0.0) /* the light is behind the surface */
+            continue;
+        if (!job->opt->local_only) {
+            /* §3.8 shadow ray to the light: any surface in between blocks it (opaque shadows) */
+            RfRay sr = rf_ray(offset_origin(h.point, h.normal, ls.l), ls.l);
+            double dist = isinf(ls.distance) ? HUGE_VAL
+                                             : rf_vec3_length(rf_vec3_sub(rf_vec3_add(h.point,
+                                                   rf_vec3_scale(ls.l, ls.distance)), sr.origin));
+            Query q;
+            memset(&q, 0, sizeof q);
+            q.shadow = 1;
+            st->shadow_rays++;
+            if (trace_query(t, &q, sr, 0.0, dist))
+                continue;
+        }
+        RfPhong ph = rf_phong(n, ls.l, v, zero, kd, ks, m->shininess, ls.i);
+        color = rf_rgb_add(color, rf_rgb_add(ph.diffuse, ph.specular));
+    }
+    if (job->opt->local_only || depth >= job->max_depth)
+        return color;
+    RfRgb kr = (m->kr), kt = (m->kt);
+    int reflects = rgb_max(kr) > 0.0, transmits = rgb_max(kt) > 0.0;
+    if (!reflects && !transmits)
+        return color;
+    /* §3.8.1: entering through the front (outside) goes from air (1) into the material */
+    double eta_i = h.front ? 1.0 : m->ior, eta_t = h.front ? m->ior : 1.0;
+    double cos_i = fmin(1.0, fmax(0.0, rf_vec3_dot(v, n)));
+    RfVec3 tdir;
+    int refracts = transmits && rf_refract(v, n, eta_i, eta_t, &tdir);
+    double fr = 0.0, ft = 1.0;
+    if (m->flags & RF_MAT_FRESNEL) {
+        RfFresnel f = rf_fresnel(eta_i, eta_t, cos_i, RF_FRESNEL_EXACT);
+        fr = f.r;
+        ft = f.t;
+    } else {
+        fr = 1.0;
+    }
+    /* total internal reflection: the transmitted share goes into the mirror ray */
+    RfRgb wr = rf_rgb_scale(kr, fr), wt = rf_rgb_scale(kt, ft);
+    if (transmits && !refracts) {
+        wr = (m->flags & RF_MAT_FRESNEL) ? rf_rgb_add(wr, wt) : rf_rgb_add(wr, kt);
+        wt = zero;
+    }
+    if (rgb_max(wr) > 0.0 && weight * rgb_max(wr) >= job->min_contribution) {
+        RfVec3 rdir = rf_reflect_dir(rf_vec3_neg(v), n);
+        RfRay rr = rf_ray(offset_origin(h.point, h.normal, rdir), rdir);
+        st->secondary_rays++;
+        color = rf_rgb_add(color, rf_rgb_mul(wr, trace(job, rr, depth + 1, weight * rgb_max(wr), st)));
+    }
+    if (refracts && rgb_max(wt) > 0.0 && weight * rgb_max(wt) >= job->min_contribution) {
+        RfRay tr = rf_ray(offset_origin(h.point, h.normal, tdir), tdir);
+        st->secondary_rays++;
+        color = rf_rgb_add(color, rf_rgb_mul(wt, trace(job, tr, depth + 1, weight * rgb_max(wt), st)));
+    }
+    return color;
+}
+
+/* The sub-pixel position of sample k of n: the centre for n = 1, stratified jitter on a k x k
+ * grid when n is a perfect square, otherwise uniform jitter. */
+static void sample_offset(int n, int k, uint64_t pixel, uint64_t seed, double *sx, double *sy)
+{
+    if (n == 1) {
+        *sx = *sy = 0.5;
+        return;
+    }
+    double u = rf_rng_uniform(pixel, (uint32_t)k, 0, seed), v = rf_rng_uniform(pixel, (uint32_t)k, 1, seed);
+    int side = (int)floor(sqrt((double)n) + 0.5);
+    if (side * side == n) {
+        *sx = ((k % side) + u) / side;
+        *sy = ((k / side) + v) / side;
+    } else {
+        *sx = u;
+        *sy = v;
+    }
+}
+
+static int render_tile(void *ctx, RfTile tile, int thread)
+{
+    const Job *job = ctx;
+    RfRenderStats *st = &job->per_thread[thread];
+    for (int y = tile.y0; y < tile.y1; y++)
+        for (int x = tile.x0; x < tile.x1; x++) {
+            uint64_t pixel = (uint64_t)y * (uint64_t)job->width + (uint64_t)x;
+            RfRgb sum = rf_rgb(0, 0, 0);
+            for (int k = 0; k < job->samples; k++) {
+                double sx, sy;
+                sample_offset(job->samples, k, pixel, job->opt->seed, &sx, &sy);
+                RfRay ray = rf_camera_ray(&job->camera, x + sx, y + sy, 0.0, 0.0);
+                st->primary_rays++;
+                sum = rf_rgb_add(sum, trace(job, ray, 1, 1.0, st));
+            }
+            float *px = job->img->data + (size_t)pixel * 3;
+            px[0] = (float)(sum.r / job->samples);
+            px[1] = (float)(sum.g / job->samples);
+            px[2] = (float)(sum.b / job->samples);
+        }
+    return 0;
+}
+
+static void job_progress(void *ctx, int done, int total)
+{
+    const Job *job = ctx;
+    job->opt->progress(job->opt->progress_ctx, done, total);
+}
+
+RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *img, RfRenderStats *stats)
+{
+    Job job;
+    RfStatus st;
+    memset(&job, 0, sizeof job);
+    memset(stats, 0, sizeof *stats);
+    job.opt = opt;
+    job.width = opt->width > 0 ? opt->width : scene->render.width;
+    job.height = opt->height > 0 ? opt->height : scene->render.height;
+    job.samples = opt->samples > 0 ? opt->samples : (scene->render.samples > 0 ? scene->render.samples : 1);
+    job.max_depth = opt->max_depth > 0 ? opt->max_depth : scene->render.max_depth;
+    job.min_contribution = scene->render.min_contribution;
+    job.background = (scene->render.background);
+    job.ambient = (scene->render.ambient);
+    if (job.width <= 0 || job.height <= 0 || job.max_depth <= 0 || !scene->has_camera)
+        return RF_ERR_DOMAIN;
+    const RfSceneCamera *sc = &scene->camera;
+    RfWindow w = rf_scene_camera_window(sc, job.width, job.height);
+    st = rf_camera_init(&job.camera, sc->eye, sc->target, sc->up, w.d, w.l, w.r, w.b, w.t, job.width, job.height);
+    if (st != RF_OK)
+        return st;
+    int threads = opt->threads > 0 ? opt->threads : rf_cpu_count();
+    job.per_thread = calloc((size_t)threads, sizeof *job.per_thread);
+    if (!job.per_thread)
+        return RF_ERR_NOMEM;
+    RfTracer *tracer = NULL;
+    st = rf_tracer_create(scene, &tracer);
+    if (st == RF_OK)
+        st = rf_image_alloc(img, job.width, job.height, 3);
+    if (st == RF_OK) {
+        job.tracer = tracer;
+        job.img = img;
+        st = rf_parallel_tiles(job.width, job.height, 16, threads, render_tile,
+                               opt->progress ? job_progress : NULL, &job);
+    }
+    for (int i = 0; i < threads; i++) {
+        stats->primary_rays += job.per_thread[i].primary_rays;
+        stats->shadow_rays += job.per_thread[i].shadow_rays;
+        stats->secondary_rays += job.per_thread[i].secondary_rays;
+    }
+    stats->width = job.width;
+    stats->height = job.height;
+    stats->samples = job.samples;
+    stats->max_depth = job.max_depth;
+    stats->threads = threads;
+    stats->features = rf_scene_features(scene);
+    free(job.per_thread);
+    rf_tracer_free(tracer);
+    if (st != RF_OK)
+        rf_image_free(img);
+    return st;
+}
