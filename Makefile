@@ -4,7 +4,8 @@
 #
 #   make            build the library (build/librefray.a) and the command (build/refray)
 #   make test       build and run every test; the last line is "N passed, N failed"
-#   make demo       the main job (for now: a tour of `refray formula`)
+#   make demo       renders the default scene (scenes/whitted.rf) to out/whitted.{exr,png}
+#   make bench      run times of the tracer on the canonical scenes (tools/bench.sh)
 #   make install PREFIX=/usr/local
 #   make clean
 #   Options: BUILD=dir (default build), SAN=1 (AddressSanitizer + UBSan), OPT="-O2 -g", V=1
@@ -36,7 +37,7 @@ LIB  := $(BUILD)/librefray.a
 BIN  := $(BUILD)/refray
 TEST := $(BUILD)/refray-tests
 
-.PHONY: all test demo install clean
+.PHONY: all test demo bench install clean
 all: $(LIB) $(BIN)
 
 # Dependencies: checked (and installed) once per build folder, then the flags are cached.
@@ -80,6 +81,9 @@ test: $(TEST) $(BIN)
 
 demo: $(BIN)
 	@sh tools/demo.sh $(BIN)
+
+bench: $(BIN)
+	@sh tools/bench.sh $(BIN)
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/refray

@@ -1,12 +1,16 @@
 #!/bin/sh
-# `make demo`: a short tour of `refray formula` (the tracer's demo replaces it once it exists).
+# `make demo`: renders the default scene (scenes/whitted.rf, the classic Whitted scene of
+# SCENES.md) to out/whitted.exr (linear) and out/whitted.png (gamma 2.2), then shows a few
+# formula calls.
 set -e
 bin=${1:-build/refray}
+mkdir -p out
+echo "\$ refray render scenes/whitted.rf -o out/whitted.exr --png out/whitted.png"
+"$bin" render scenes/whitted.rf -o out/whitted.exr --png out/whitted.png
+echo "wrote out/whitted.exr and out/whitted.png"
+echo
 run() { echo "\$ refray formula $*"; "$bin" formula "$@"; echo; }
-run cross a=1,0,0 b=0,1,0
+run intersect-sphere origin=0,0,5 dir=0,0,-1 center=0,0,0 radius=1
+run fresnel eta_i=1 eta_t=1.5 cos_i=1
 run barycentric p1=0,0 p2=4,0 p3=0,4 q=1,1
-run euler psi_deg=30 theta_deg=45 phi_deg=60 order=zyx
-run axis-angle d=1,1,1 phi_deg=120 point=1,0,0
-run inverse matrix='2,0,0;0,4,0;0,0,8' kind=scale
-run transform-normal matrix='2,0,0;0,1,0;0,0,1' n=1,1,0
-echo "refray formula list   # every id; refray formula ID --help for its inputs"
+echo "more: refray formula list; refray info scenes/whitted.rf; refray chromaticity -o diagram.png"

@@ -1,7 +1,7 @@
 /* refray: a bounding volume hierarchy over primitives given by their bounding boxes.
  * Built top-down with the surface area heuristic over binned centroids (Wald 2007, "On fast
  * Construction of SAH-based Bounding Volume Hierarchies"), flattened depth-first (the left
- * child follows its parent), traversed front to back. Double precision throughout; the slab
+ * child follows its parent), traversed front to back by the children's entry distances. Double precision throughout; the slab
  * test widens the far distance by 1 + 2 gamma(3) (Pharr, Jakob, Humphreys, PBR 4th ed., 6.8)
  * so that rounding never culls a box the ray really crosses. Deterministic: the same boxes give
  * the same tree. Boxes must be finite (unbounded primitives such as planes are the caller's). */

@@ -198,28 +198,50 @@ void rf_bvh_free(RfBvh *bvh)
 /* 1 + 2 gamma(3), gamma(n) = n eps / (1 - n eps) with eps = DBL_EPSILON / 2 (PBR 4th ed.) */
 #define SLAB_WIDEN (1.0 + 2.0 * (3.0 * (DBL_EPSILON / 2)) / (1.0 - 3.0 * (DBL_EPSILON / 2)))
 
-int rf_aabb_hit(RfAabb box, RfVec3 o, RfVec3 inv, double t0, double t1)
+/* A ray prepared for slab tests: origin, reciprocal direction and the sign of each component
+ * (which picks the near and the far plane of every slab without a swap). */
+typedef struct {
+    RfVec3 o, inv;
+    int nx, ny, nz;
+} SlabRay;
+
+static SlabRay slab_ray(RfVec3 o, RfVec3 inv)
 {
-    const double lo[3] = {box.lo.x, box.lo.y, box.lo.z}, hi[3] = {box.hi.x, box.hi.y, box.hi.z};
-    const double org[3] = {o.x, o.y, o.z}, id[3] = {inv.x, inv.y, inv.z};
-    for (int a = 0; a < 3; a++) {
-        double tn = (lo[a] - org[a]) * id[a], tf = (hi[a] - org[a]) * id[a];
-        if (tn > tf) {
-            double t = tn;
-            tn = tf;
-            tf = t;
-        }
-        tf *= SLAB_WIDEN;
-        /* a NaN (0 * inf: the origin on a slab plane of a parallel ray) fails both comparisons
-         * and leaves the interval as it was: conservative */
-        if (tn > t0)
-            t0 = tn;
-        if (tf < t1)
-            t1 = tf;
-        if (t0 > t1)
-            return 0;
-    }
-    return 1;
+    SlabRay r;
+    r.o = o;
+    r.inv = inv;
+    r.nx = inv.x < 0.0;
+    r.ny = inv.y < 0.0;
+    r.nz = inv.z < 0.0;
+    return r;
+}
+
+/* The distance where the ray enters the box within [t0, t1], or HUGE_VAL for a miss. The far
+ * distances are widened by SLAB_WIDEN so that rounding never culls a box the ray crosses; a NaN
+ * (0 * inf: the origin on a slab plane of a parallel ray) fails the comparisons and leaves the
+ * interval as it was, which is conservative too. */
+static inline double slab_entry(const RfAabb *b, const SlabRay *r, double t0, double t1)
+{
+    double tn, tf;
+    tn = ((r->nx ? b->hi.x : b->lo.x) - r->o.x) * r->inv.x;
+    tf = ((r->nx ? b->lo.x : b->hi.x) - r->o.x) * r->inv.x * SLAB_WIDEN;
+    t0 = tn > t0 ? tn : t0;
+    t1 = tf < t1 ? tf : t1;
+    tn = ((r->ny ? b->hi.y : b->lo.y) - r->o.y) * r->inv.y;
+    tf = ((r->ny ? b->lo.y : b->hi.y) - r->o.y) * r->inv.y * SLAB_WIDEN;
+    t0 = tn > t0 ? tn : t0;
+    t1 = tf < t1 ? tf : t1;
+    tn = ((r->nz ? b->hi.z : b->lo.z) - r->o.z) * r->inv.z;
+    tf = ((r->nz ? b->lo.z : b->hi.z) - r->o.z) * r->inv.z * SLAB_WIDEN;
+    t0 = tn > t0 ? tn : t0;
+    t1 = tf < t1 ? tf : t1;
+    return t0 <= t1 ? t0 : HUGE_VAL;
+}
+
+int rf_aabb_hit(RfAabb box, RfVec3 origin, RfVec3 inv_dir, double t_min, double t_max)
+{
+    SlabRay r = slab_ray(origin, inv_dir);
+    return slab_entry(&box, &r, t_min, t_max) != HUGE_VAL;
 }
 
 int rf_bvh_intersect(const RfBvh *bvh, RfRay ray, double t_min, double *t_max, RfBvhPrimFn fn,
@@ -227,37 +249,55 @@ int rf_bvh_intersect(const RfBvh *bvh, RfRay ray, double t_min, double *t_max, R
 {
     if (bvh->node_count == 0)
         return -1;
-    RfVec3 inv = rf_vec3(1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z);
-    const int neg[3] = {ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0};
-    int stack[STACK], top = 0, hit = -1, node = 0;
+    SlabRay r = slab_ray(ray.origin, rf_vec3(1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z));
+    struct {
+        int node;
+        double entry;
+    } stack[STACK];
+    int top = 0, hit = -1, node = 0;
+    if (slab_entry(&bvh->nodes[0].box, &r, t_min, *t_max) == HUGE_VAL)
+        return -1;
     for (;;) {
         const RfBvhNode *n = &bvh->nodes[node];
-        if (rf_aabb_hit(n->box, ray.origin, inv, t_min, *t_max)) {
-            if (n->count > 0) {
-                for (int i = n->first; i < n->first + n->count; i++) {
-                    int p = bvh->prims[i];
-                    if (fn(ctx, p, ray, t_min, t_max)) {
-                        hit = p;
-                        if (any_hit)
-                            return hit;
-                    }
+        if (n->count == 0) {
+            /* test both children here and go to the nearer one first; the farther one waits on
+             * the stack with its entry distance, and is skipped if a closer hit appears */
+            int a = node + 1, b = n->first;
+            double ta = slab_entry(&bvh->nodes[a].box, &r, t_min, *t_max);
+            double tb = slab_entry(&bvh->nodes[b].box, &r, t_min, *t_max);
+            if (tb < ta) {
+                int ti = a;
+                double tt = ta;
+                a = b, ta = tb, b = ti, tb = tt;
+            }
+            if (ta != HUGE_VAL) {
+                if (tb != HUGE_VAL) {
+                    stack[top].node = b;
+                    stack[top++].entry = tb;
                 }
-            } else {
-                /* visit the child on the ray's near side first */
-                int left = node + 1, right = n->first;
-                if (neg[n->axis]) {
-                    stack[top++] = left;
-                    node = right;
-                } else {
-                    stack[top++] = right;
-                    node = left;
-                }
+                node = a;
                 continue;
             }
+        } else {
+            for (int i = n->first; i < n->first + n->count; i++) {
+                int p = bvh->prims[i];
+                if (fn(ctx, p, ray, t_min, t_max)) {
+                    hit = p;
+                    if (any_hit)
+                        return hit;
+                }
+            }
         }
-        if (top == 0)
+        /* pop the next subtree that can still hold a closer hit */
+        for (node = -1; top > 0;) {
+            top--;
+            if (stack[top].entry <= *t_max) {
+                node = stack[top].node;
+                break;
+            }
+        }
+        if (node < 0)
             break;
-        node = stack[--top];
     }
     return hit;
 }

@@ -1,6 +1,7 @@
 /* The Whitted-style tracer (render.h): scene preparation, nearest-hit queries, shading. */
 #include "refray/render.h"
 
+#include <float.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -45,6 +46,10 @@ static RfVec3 vertex(const RfScene *s, const RfPrimitive *p, int k)
     return s->vertices[p->u.poly.first + (size_t)k];
 }
 
+/* sqrt(1 - a^2), padded by a few ulps against the rounding of a and of the root, so the box
+ * stays conservative */
+static double disc_reach(double a) { return fmin(1.0, sqrt(fmax(0.0, 1.0 - a * a)) + 4.0 * DBL_EPSILON); }
+
 static RfAabb item_box(const RfScene *s, Item it)
 {
     const RfPrimitive *p = &s->prims[it.prim];
@@ -68,13 +73,16 @@ static RfAabb item_box(const RfScene *s, Item it)
         }
         break;
     case RF_PRIM_CONE: {
-        /* each end disc lies in the cube of its radius around its centre */
-        RfVec3 rb = rf_vec3(p->u.cone.base_radius, p->u.cone.base_radius, p->u.cone.base_radius);
-        RfVec3 ra = rf_vec3(p->u.cone.apex_radius, p->u.cone.apex_radius, p->u.cone.apex_radius);
-        b = rf_aabb_add_point(b, rf_vec3_sub(p->u.cone.base, rb));
-        b = rf_aabb_add_point(b, rf_vec3_add(p->u.cone.base, rb));
-        b = rf_aabb_add_point(b, rf_vec3_sub(p->u.cone.apex, ra));
-        b = rf_aabb_add_point(b, rf_vec3_add(p->u.cone.apex, ra));
+        /* the box of the two end discs: a disc of radius r around c with unit axis a reaches
+         * r sqrt(1 - a_i^2) along coordinate i */
+        const RfCone *c = &p->u.cone;
+        RfVec3 a = rf_vec3_normalize(rf_vec3_sub(c->apex, c->base));
+        RfVec3 e = rf_vec3(disc_reach(a.x), disc_reach(a.y), disc_reach(a.z));
+        RfVec3 eb = rf_vec3_scale(e, c->base_radius), ea = rf_vec3_scale(e, c->apex_radius);
+        b = rf_aabb_add_point(b, rf_vec3_sub(c->base, eb));
+        b = rf_aabb_add_point(b, rf_vec3_add(c->base, eb));
+        b = rf_aabb_add_point(b, rf_vec3_sub(c->apex, ea));
+        b = rf_aabb_add_point(b, rf_vec3_add(c->apex, ea));
         break;
     }
     default:
