@@ -310,6 +310,7 @@ typedef struct {
     double min_contribution;
     RfRgb background, ambient;
     RfCamera camera;
+    double hither; /* near plane distance along the view axis (NFF `hither`) */
     int width, height, samples;
     RfImage *img;
     RfRenderStats *per_thread; /* one per thread: no sharing on the hot path */
@@ -341,12 +342,14 @@ static int light_sample(const RfLight *l, RfVec3 point, RfLightSample *out)
     }
 }
 
-static RfRgb trace(const Job *job, RfRay ray, int depth, double weight, RfRenderStats *st)
+/* The colour seen along ray (hits in [t_min, inf)); depth 1 is the primary ray, weight the
+ * product of the reflection/transmission weights on the way here. */
+static RfRgb trace(const Job *job, RfRay ray, double t_min, int depth, double weight, RfRenderStats *st)
 {
     const RfTracer *t = job->tracer;
     const RfScene *s = t->scene;
     RfSurfaceHit h;
-    if (rf_tracer_intersect(t, ray, 0.0, HUGE_VAL, &h) < 0)
+    if (rf_tracer_intersect(t, ray, t_min, HUGE_VAL, &h) < 0)
         return job->background;
     const RfMaterial *m = &s->materials[s->prims[h.prim].material];
     RfVec3 v = rf_vec3_neg(rf_vec3_normalize(ray.dir));
@@ -405,12 +408,12 @@ static RfRgb trace(const Job *job, RfRay ray, int depth, double weight, RfRender
         RfVec3 rdir = rf_reflect_dir(rf_vec3_neg(v), n);
         RfRay rr = rf_ray(offset_origin(h.point, h.normal, rdir), rdir);
         st->secondary_rays++;
-        color = rf_rgb_add(color, rf_rgb_mul(wr, trace(job, rr, depth + 1, weight * rgb_max(wr), st)));
+        color = rf_rgb_add(color, rf_rgb_mul(wr, trace(job, rr, 0.0, depth + 1, weight * rgb_max(wr), st)));
     }
     if (refracts && rgb_max(wt) > 0.0 && weight * rgb_max(wt) >= job->min_contribution) {
         RfRay tr = rf_ray(offset_origin(h.point, h.normal, tdir), tdir);
         st->secondary_rays++;
-        color = rf_rgb_add(color, rf_rgb_mul(wt, trace(job, tr, depth + 1, weight * rgb_max(wt), st)));
+        color = rf_rgb_add(color, rf_rgb_mul(wt, trace(job, tr, 0.0, depth + 1, weight * rgb_max(wt), st)));
     }
     return color;
 }
@@ -446,8 +449,12 @@ static int render_tile(void *ctx, RfTile tile, int thread)
                 double sx, sy;
                 sample_offset(job->samples, k, pixel, job->opt->seed, &sx, &sy);
                 RfRay ray = rf_camera_ray(&job->camera, x + sx, y + sy, 0.0, 0.0);
+                /* the hither plane: nothing nearer than `hither` along the view axis -w */
+                double t_min = job->hither > 0.0
+                                   ? job->hither / -rf_vec3_dot(ray.dir, job->camera.basis.w)
+                                   : 0.0;
                 st->primary_rays++;
-                sum = rf_rgb_add(sum, trace(job, ray, 1, 1.0, st));
+                sum = rf_rgb_add(sum, trace(job, ray, t_min, 1, 1.0, st));
             }
             float *px = job->img->data + (size_t)pixel * 3;
             px[0] = (float)(sum.r / job->samples);
@@ -484,6 +491,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     st = rf_camera_init(&job.camera, sc->eye, sc->target, sc->up, w.d, w.l, w.r, w.b, w.t, job.width, job.height);
     if (st != RF_OK)
         return st;
+    job.hither = sc->hither;
     int threads = opt->threads > 0 ? opt->threads : rf_cpu_count();
     job.per_thread = calloc((size_t)threads, sizeof *job.per_thread);
     if (!job.per_thread)
