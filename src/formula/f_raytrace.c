@@ -2,6 +2,7 @@
  * (intersect.h, camera.h, shading.h, optics.h); the formula only reads, checks and prints. */
 #include "refray/camera.h"
 #include "refray/formula.h"
+#include "formula_internal.h"
 #include "refray/intersect.h"
 #include "refray/optics.h"
 #include "refray/shading.h"
@@ -84,19 +85,7 @@ static int f_nyquist(RfFormulaCall *c)
     return 0;
 }
 
-static int f_camera_basis(RfFormulaCall *c)
-{
-    RfVec3 eye, target, up;
-    RfCameraBasis b;
-    if (rf_in_vec3(c, "eye", &eye) || rf_in_vec3(c, "target", &target) || rf_in_vec3(c, "up", &up))
-        return 1;
-    if (rf_camera_basis(eye, target, up, &b) != RF_OK)
-        return rf_call_error(c, "eye equals target, or up is zero or parallel to the view direction");
-    rf_out_vec3(c, "u", b.u);
-    rf_out_vec3(c, "v", b.v);
-    rf_out_vec3(c, "w", b.w);
-    return 0;
-}
+static int f_camera_basis(RfFormulaCall *c) { return rf_formula_camera(c, 0); }
 
 static int f_primary_ray(RfFormulaCall *c)
 {

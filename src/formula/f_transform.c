@@ -1,5 +1,6 @@
 /* `refray formula` entries of §4 (transformations and homogeneous coordinates). */
 #include "refray/formula.h"
+#include "formula_internal.h"
 #include "refray/mat.h"
 #include "refray/numeric.h"
 #include "refray/transform.h"
@@ -346,7 +347,7 @@ static int f_change_of_basis(RfFormulaCall *c)
     return 0;
 }
 
-static int f_camera_transform(RfFormulaCall *c)
+int rf_formula_camera(RfFormulaCall *c, int with_view)
 {
     RfVec3 eye, target, up;
     RfCameraBasis b;
@@ -354,13 +355,17 @@ static int f_camera_transform(RfFormulaCall *c)
         return 1;
     if (rf_camera_basis(eye, target, up, &b) != RF_OK)
         return rf_call_error(c, "eye equals target, or up is zero or parallel to the view direction");
-    RfMat4 v = rf_camera_view(eye, b);
     rf_out_vec3(c, "u", b.u);
     rf_out_vec3(c, "v", b.v);
     rf_out_vec3(c, "w", b.w);
-    rf_out_mat(c, "view", &v.m[0][0], 4);
+    if (with_view) {
+        RfMat4 v = rf_camera_view(eye, b);
+        rf_out_mat(c, "view", &v.m[0][0], 4);
+    }
     return 0;
 }
+
+static int f_camera_transform(RfFormulaCall *c) { return rf_formula_camera(c, 1); }
 
 /* transform-point (w = 1) and transform-direction (w = 0): an x of dimension n - 1 is made
  * homogeneous; an x of dimension n is multiplied as it is (a linear map). */
