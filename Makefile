@@ -6,6 +6,7 @@
 #   make test       build and run every test; the last line is "N passed, N failed"
 #   make demo       renders the default scene (scenes/whitted.rf) to out/whitted.{exr,png}
 #   make bench      run times of the tracer on the canonical scenes (tools/bench.sh)
+#   make report     tracer vs. OpenGL rasterizer on every scene: report/index.html (docs/compare.md)
 #   make install PREFIX=/usr/local
 #   make clean
 #   Options: BUILD=dir (default build), SAN=1 (AddressSanitizer + UBSan), OPT="-O2 -g", V=1
@@ -31,14 +32,26 @@ LIB_SRC  := $(wildcard src/core/*.c src/color/*.c src/geom/*.c src/scene/*.c src
                        src/io/*.c src/formula/*.c)
 CLI_SRC  := $(wildcard src/cli/*.c)
 TEST_SRC := $(wildcard tests/*.c)
+# the comparator (issue 5): OpenGL through OSMesa, linked into refray-raster and the tests only
+RASTER_SRC := $(filter-out compare/verify%,$(wildcard compare/*.c))
+RASTER_LIB_SRC := $(filter-out compare/raster_main.c,$(RASTER_SRC))
+OSMESA_LIBS = $(shell pkg-config --libs osmesa 2>/dev/null || echo -lOSMesa)
 obj = $(patsubst %.c,$(BUILD)/obj/%.o,$(1))
+# the CGAL verifier (issue 7, docs/verify.md): C++17, its own binary refray-verify
+VERIFY_SRC := $(wildcard compare/verify*.cpp)
+cxxobj = $(patsubst %.cpp,$(BUILD)/obj/%.o,$(1))
+# -frounding-math: CGAL's interval filters switch the rounding mode (CGAL's own build sets it)
+CXXFLAGS_ALL = -std=c++17 $(OPT) -Wall -Wextra -Werror -ffp-contract=off -frounding-math -pthread \
+               -Iinclude $(SANFLAGS) $(CXXFLAGS)
 
 LIB  := $(BUILD)/librefray.a
 BIN  := $(BUILD)/refray
 TEST := $(BUILD)/refray-tests
+RASTER := $(BUILD)/refray-raster
+VERIFY := $(BUILD)/refray-verify
 
-.PHONY: all test demo bench install clean
-all: $(LIB) $(BIN)
+.PHONY: all test demo bench install clean report stress
+all: $(LIB) $(BIN) $(RASTER) $(VERIFY)
 
 # Dependencies: checked (and installed) once per build folder, then the flags are cached.
 NO_CONFIG_GOALS := clean
@@ -72,12 +85,40 @@ $(BIN): $(call obj,$(CLI_SRC)) $(LIB)
 	@$(if $(Q),echo "  LINK    $@")
 	$(Q)$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL)
 
-$(TEST): $(call obj,$(TEST_SRC)) $(LIB)
+$(TEST): $(call obj,$(TEST_SRC)) $(call obj,$(RASTER_LIB_SRC)) $(LIB)
 	@$(if $(Q),echo "  LINK    $@")
-	$(Q)$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL)
+	$(Q)$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL) $(OSMESA_LIBS)
 
-test: $(TEST) $(BIN)
-	RF_BIN=$(BIN) RF_TEST_DATA=tests/data $(TEST)
+$(RASTER): $(call obj,$(RASTER_SRC)) $(LIB)
+	@$(if $(Q),echo "  LINK    $@")
+	$(Q)$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL) $(OSMESA_LIBS)
+
+$(BUILD)/obj/compare/%.o: compare/%.cpp
+	@mkdir -p $(dir $@)
+	@$(if $(Q),echo "  CXX     $<")
+	$(Q)$(CXX) $(CXXFLAGS_ALL) -MMD -MP -c $< -o $@
+
+$(VERIFY): $(call cxxobj,$(VERIFY_SRC)) $(LIB)
+	@$(if $(Q),echo "  LINK    $@")
+	$(Q)$(CXX) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL) -lgmp -lmpfr
+
+test: $(TEST) $(BIN) $(RASTER) $(VERIFY)
+	LSAN_OPTIONS=suppressions=$(CURDIR)/compare/lsan.supp:print_suppressions=0 RF_BIN=$(BIN) RF_VERIFY=$(VERIFY) RF_TEST_DATA=tests/data $(TEST)
+
+# the numerical stress suite (issue 7, docs/verify.md): every verifier class, the acne and leak
+# measurements, the optics sweep, the stress renders and the SPD scenes, one table; non-zero
+# exit on a real disagreement. CI size by default; the full size is STRESS_RAYS=10000000.
+STRESS_RAYS ?= 150000
+STRESS_SCENES ?= $(wildcard scenes/spd/*.nff) scenes/whitted.rf
+stress: $(VERIFY)
+	$(VERIFY) --stress --rays $(STRESS_RAYS) --jobs 2 $(STRESS_SCENES)
+
+# the cross-validation report: every scene through `refray render --local` and refray-raster,
+# diffed; writes report/index.html (docs/compare.md). REPORT_SIZE = longest side in pixels
+REPORT_SIZE ?= 512
+REPORT_DIR ?= report
+report: $(BIN) $(RASTER)
+	@sh compare/report.sh $(BIN) $(RASTER) $(REPORT_DIR) $(REPORT_SIZE)
 
 demo: $(BIN)
 	@sh tools/demo.sh $(BIN)
@@ -88,6 +129,7 @@ bench: $(BIN)
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/refray
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/refray
+	install -m 755 $(RASTER) $(DESTDIR)$(PREFIX)/bin/refray-raster
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/librefray.a
 	install -m 644 include/refray/*.h $(DESTDIR)$(PREFIX)/include/refray/
 

@@ -12,6 +12,10 @@
 #include "refray/status.h"
 #include "refray/vec.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct { RfVec3 lo, hi; } RfAabb;
 
 static inline RfAabb rf_aabb_empty(void)
@@ -77,5 +81,9 @@ int rf_bvh_intersect(const RfBvh *bvh, RfRay ray, double t_min, double *t_max, R
 /* Whether the ray meets the box at some t in [t_min, t_max] (conservatively: never a false
  * miss). inv_dir = 1/dir per component. */
 int rf_aabb_hit(RfAabb box, RfVec3 origin, RfVec3 inv_dir, double t_min, double t_max);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -14,6 +14,10 @@
 #include "refray/transform.h"
 #include "refray/vec.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     RfVec3 eye;
     RfCameraBasis basis;          /* u, v, w of §3.4 (rf_camera_basis) */
@@ -52,5 +56,9 @@ RfRay rf_camera_ray(const RfCamera *cam, double px, double py, double lens_u, do
  * focal_distance <= 0. */
 RfStatus rf_thin_lens_ray(RfVec3 pixel_dir, double lens_u, double lens_v, double aperture_radius,
                           double focal_distance, RfRay *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

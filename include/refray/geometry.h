@@ -5,6 +5,10 @@
 #include "refray/status.h"
 #include "refray/vec.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* §2.1 Example 2.3: n' = (b-a) x (c-a), n = n'/|n'|, area = |n'|/2.
  * RF_ERR_DEGENERATE (n and area still written, n = 0) when the points are collinear. */
 typedef struct { RfVec3 n_raw, n; double area; } RfTriangleNormal;
@@ -25,5 +29,9 @@ int rf_basis_is_orthogonal(int n, const double *const *basis, int unit);
  * measured along the triangle's normal (so a point off the plane gets the coordinates of its
  * orthogonal projection). RF_ERR_DEGENERATE for a triangle of zero area. */
 RfStatus rf_barycentric(RfVec3 p1, RfVec3 p2, RfVec3 p3, RfVec3 q, double l[3]);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -8,6 +8,10 @@
 
 #include "refray/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Interleaved float pixels, row 0 at the top: data[(y * width + x) * channels + c].
  * channels is 1 (Y), 3 (RGB) or 4 (RGBA). */
 typedef struct {
@@ -80,5 +84,9 @@ RfStatus rf_png_read(const char *path, RfPngOptions decode, RfImage *img, char *
 /* A string attribute of an EXR's header: *value is malloc'd (free it). RF_ERR_DOMAIN with a
  * message when the attribute is missing or not a string. */
 RfStatus rf_exr_read_attr(const char *path, const char *name, char **value, char *err, size_t err_size);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

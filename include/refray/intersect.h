@@ -14,6 +14,10 @@
 #include "refray/ray.h"
 #include "refray/vec.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     double t;
     double l[3];   /* triangles: barycentric coordinates of the hit for p1, p2, p3; else 0 */
@@ -94,5 +98,9 @@ typedef struct { RfVec3 base; double base_radius; RfVec3 apex; double apex_radiu
  * ray running inside the surface does not hit. normal: outward (away from the axis, tilted by
  * the slope); at a radius-0 tip it is taken along the axis. */
 int rf_intersect_cone(RfRay ray, RfCone cone, double t_min, double t_max, RfHit *hit);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -7,6 +7,10 @@
 #include "refray/status.h"
 #include "refray/vec.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct { double m[2][2]; } RfMat2;
 typedef struct { double m[3][3]; } RfMat3;
 typedef struct { double m[4][4]; } RfMat4;
@@ -58,5 +62,9 @@ RfStatus rf_mat4_inverse(RfMat4 a, RfMat4 *out);
 /* The upper-left 3 x 3 (linear) part, and the homogeneous matrix of A x + b. */
 RfMat3 rf_mat4_linear(RfMat4 a);
 RfMat4 rf_mat4_affine(RfMat3 a, RfVec3 b);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

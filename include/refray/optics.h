@@ -9,6 +9,10 @@
 
 #include "refray/vec.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define RF_C0 299792458.0 /* speed of light in vacuum, m/s (exact by definition of the metre) */
 
 /* §3.8.1 eta = c0 / c_medium. */
@@ -38,5 +42,9 @@ RfFresnel rf_fresnel(double eta_i, double eta_t, double cos_i, RfFresnelMethod m
 
 /* Cauchy's dispersion formula eta = A + B / lambda^2 with lambda in micrometres. */
 double rf_cauchy(double lambda_nm, double a, double b);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

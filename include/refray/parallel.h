@@ -6,6 +6,10 @@
 
 #include "refray/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     int x0, y0, x1, y1; /* pixels [x0, x1) x [y0, y1) */
     int index;          /* tile number in row-major tile order */
@@ -25,5 +29,9 @@ int rf_cpu_count(void);
  * fails. */
 RfStatus rf_parallel_tiles(int width, int height, int tile_size, int threads, RfTileFn fn,
                            RfProgressFn progress, void *ctx);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

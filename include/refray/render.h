@@ -12,6 +12,10 @@
 #include "refray/scene.h"
 #include "refray/status.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
     int width, height;   /* 0: the scene's */
     int max_depth;       /* 0: the scene's; the primary ray is depth 1 */
@@ -21,6 +25,8 @@ typedef struct {
     int local_only;      /* 1: primary rays and local Phong only (no shadows, reflection,
                             refraction): the comparator's matching mode */
     uint64_t seed;       /* of the counter-based random numbers (jitter) */
+    double fixed_offset; /* 0: the self-intersection policy (rf_ray_offset_origin); > 0 replaces it
+                            by this absolute offset: a planted bug for the verifier only */
     RfProgressFn progress; /* called after each tile (may be NULL) */
     void *progress_ctx;
 } RfRenderOptions;
@@ -29,6 +35,7 @@ RfRenderOptions rf_render_options_default(void);
 
 typedef struct {
     uint64_t primary_rays, shadow_rays, secondary_rays;
+    uint64_t invalid_samples; /* samples whose radiance was NaN or Inf: counted, replaced by 0 */
     int width, height, samples, max_depth, threads;
     unsigned features;   /* rf_scene_features of the scene */
 } RfRenderStats;
@@ -50,7 +57,17 @@ typedef struct {
 } RfSurfaceHit;
 int rf_tracer_intersect(const RfTracer *tracer, RfRay ray, double t_min, double t_max, RfSurfaceHit *hit);
 
+/* The self-intersection policy (numeric.h RF_RAY_OFFSET_REL): the hit point p moved off the
+ * surface along the unit geometric normal n to the side dir leaves by. fixed_offset > 0 moves
+ * it by that absolute distance instead (RfRenderOptions.fixed_offset, the verifier's planted
+ * bug: a scale-blind epsilon must be caught by the acne measurement). */
+RfVec3 rf_ray_offset_origin(RfVec3 p, RfVec3 n, RfVec3 dir, double fixed_offset);
+
 /* Renders the scene into img (allocated here, RGB float, linear). */
 RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *img, RfRenderStats *stats);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -11,6 +11,7 @@
 #include <stddef.h>
 
 #include "refray/intersect.h" /* RfSphere, RfPlane, RfCone: primitives pass straight to §3.5 */
+#include "refray/mat.h"       /* RfMat4: instance transforms (§4.8) */
 #include "refray/rgb.h"
 #include "refray/shading.h"   /* RfFalloff */
 #include "refray/status.h"
@@ -40,7 +41,8 @@ typedef struct {
     double l, r, b, t;
     double fov;             /* full vertical field of view in degrees, 0 < fov < 180 */
     RfFovReading fov_reading;
-    double hither;          /* near distance along the ray: nothing closer is visible */
+    double hither;          /* near plane at this distance along the view axis -w: nothing
+                               nearer is seen by primary rays (OpenGL's near plane) */
     RfSrcLoc loc, target_loc, up_loc;
 } RfSceneCamera;
 
@@ -111,6 +113,7 @@ typedef enum {
     RF_PRIM_TRIANGLE, /* 3 vertices in the shared vertex array */
     RF_PRIM_POLYGON,  /* n >= 3 coplanar vertices in the shared vertex array */
     RF_PRIM_CONE,     /* open cone frustum or cylinder (no end caps) */
+    RF_PRIM_INSTANCE, /* an object placed by a transform: RfScene.instances[u.instance] (§4.8) */
     RF_PRIM_TYPE_COUNT
 } RfPrimType;
 
@@ -120,8 +123,10 @@ enum {
                                          of a sphere or cone (the inside with RF_PRIM_INSIDE) */
     RF_PRIM_INSIDE = 1u << 1,         /* NFF negative radii: only the inside is visible */
     RF_PRIM_VERTEX_NORMALS = 1u << 2, /* triangle/polygon: normals[nfirst ..] per vertex */
-    RF_PRIM_NONCONVEX = 1u << 3       /* polygon that is not convex (set by the scene, e.g. the
+    RF_PRIM_NONCONVEX = 1u << 3,      /* polygon that is not convex (set by the scene, e.g. the
                                          SPD gears): intersect it with a general point test */
+    RF_PRIM_IN_OBJECT = 1u << 4       /* part of an object (RfSceneObject), not of the world:
+                                         seen only through the instances of that object */
 };
 
 typedef struct {
@@ -134,12 +139,33 @@ typedef struct {
         RfPlane plane;                                    /* <x, normal> = offset, normal unit */
         struct { size_t first, nfirst; int count; } poly; /* triangle, polygon */
         RfCone cone;                                      /* radii >= 0 */
+        size_t instance;                                  /* index into RfScene.instances */
     } u;
 } RfPrimitive;
 
+/* ---- the scene graph (§4.8) ------------------------------------------------------------- */
+
+/* A named object (a mesh, or a group of primitives and instances): the primitives
+ * prims[first .. first + count), each flagged RF_PRIM_IN_OBJECT. Objects are placed only by
+ * instances; instances inside objects make the graph a DAG (one object in several groups). */
+typedef struct {
+    char name[RF_NAME_MAX];
+    size_t first, count;
+    RfSrcLoc loc;
+} RfSceneObject;
+
+/* One placement of an object. The tracer takes rays into object space with to_object and
+ * normals back with normal_to_world = ((M^-1)^T of the linear part, §4.9). */
+typedef struct {
+    int object;             /* index into RfScene.objects */
+    RfMat4 to_world;        /* M: object -> world (or -> the enclosing object) */
+    RfMat4 to_object;       /* M^-1 */
+    RfMat3 normal_to_world; /* (M^-1)^T, linear part only */
+} RfInstance;
+
 /* ---- the scene -------------------------------------------------------------------------- */
 
-typedef enum { RF_FORMAT_NONE, RF_FORMAT_NFF, RF_FORMAT_RF } RfSceneFormat;
+typedef enum { RF_FORMAT_NONE, RF_FORMAT_NFF, RF_FORMAT_RF, RF_FORMAT_OBJ } RfSceneFormat;
 
 typedef struct {
     RfSceneFormat format;
@@ -157,9 +183,13 @@ typedef struct {
     size_t vertex_count;
     RfVec3 *normals;  /* per-vertex normals (unit) of primitives with RF_PRIM_VERTEX_NORMALS */
     size_t normal_count;
+    RfSceneObject *objects; /* the scene graph (§4.8): objects and their placements */
+    size_t object_count;
+    RfInstance *instances;
+    size_t instance_count;
 
     /* capacities of the arrays above: private to the rf_scene_add_* functions */
-    size_t material_cap, light_cap, prim_cap, vertex_cap, normal_cap;
+    size_t material_cap, light_cap, prim_cap, vertex_cap, normal_cap, object_cap, instance_cap;
 } RfScene;
 
 /* An empty scene with default render settings (512 x 512, depth 8, threshold 0, 1 sample,
@@ -179,6 +209,33 @@ RfStatus rf_scene_add_vertices(RfScene *scene, const RfVec3 *v, const RfVec3 *no
  * RF_PRIM_NONCONVEX, and appends it. A plane may come with any non-zero normal and the
  * matching offset: both are divided by |normal| here. On RF_ERR_DEGENERATE/DOMAIN msg says why. */
 RfStatus rf_scene_add_primitive(RfScene *scene, const RfPrimitive *p, char *msg, size_t msgsz);
+/* Appends an object with an empty primitive range starting at prim_count. */
+RfStatus rf_scene_add_object(RfScene *scene, const char *name, RfSrcLoc loc, int *index);
+/* Appends a placement of `object` by m and computes its inverse and normal matrix (§4.9).
+ * RF_ERR_SINGULAR when m (or its linear part) cannot be inverted. object may be set later
+ * (forward references); rf_scene_validate checks it. */
+RfStatus rf_scene_add_instance(RfScene *scene, int object, RfMat4 m, size_t *index);
+
+/* The graph checks (scene_graph.c): every instance names an existing object and no object
+ * contains itself through instances (a cycle). On failure *loc is the instance statement to
+ * blame and msg says which objects form the cycle. */
+RfStatus rf_scene_graph_check(const RfScene *scene, RfSrcLoc *loc, char *msg, size_t msgsz);
+/* Triangles as stored (a convex polygon counts as count - 2, a non-convex one as 1) and as
+ * rendered after instancing: the world's primitives with every instance expanded. */
+typedef struct { size_t stored, rendered, instances_rendered; } RfTriangleCount;
+RfTriangleCount rf_scene_triangle_count(const RfScene *scene);
+/* Object-space box of an object's bounded primitives (instances inside it transformed);
+ * 0 when it has none or an unbounded one (a plane). */
+int rf_scene_object_bounds(const RfScene *scene, int object, RfVec3 *lo, RfVec3 *hi);
+/* A copy of the scene without instances: every instance of a mesh replaced by transformed
+ * triangles and polygons (vertex normals by the inverse transpose, §4.9; a mirroring transform
+ * reverses the vertex order so the front stays the front), spheres and cones transformed when
+ * the transform is a similarity. It renders like the instanced scene up to rounding, except
+ * smooth shading under a non-uniform scale: the flat copy normalises the transformed vertex
+ * normals before the interpolation, the tracer interpolates in object space and transforms
+ * after. RF_ERR_DOMAIN (msg says why) for a sphere or cone under a non-similarity transform,
+ * which has no primitive of its own. */
+RfStatus rf_scene_flatten(const RfScene *scene, RfScene *out, char *msg, size_t msgsz);
 
 /* The checks of the model, one routine each, used by the readers and by rf_scene_validate:
  * finite values, sphere radius > 0, plane normal != 0, polygons with >= 3 vertices and a
@@ -218,7 +275,8 @@ const char *rf_feature_name(unsigned bit);
 const char *rf_prim_type_name(RfPrimType type);
 const char *rf_light_kind_name(RfLightKind kind);
 
-/* Axis-aligned box of every bounded primitive (planes are unbounded and left out).
+/* Axis-aligned box of every bounded world primitive, instances by their transformed object
+ * boxes (planes are unbounded and left out).
  * 0 when there is none. Cones get the box of their two end discs' bounding cubes. */
 int rf_scene_bounds(const RfScene *scene, RfVec3 *lo, RfVec3 *hi);
 

@@ -20,11 +20,15 @@ typedef struct {
     /* how NFF's `angle` is read (NFF.md): RF_FOV_PIXEL_CENTRES (default, the NFF text) or
      * RF_FOV_EDGES (the SPD's POV-Ray converter) */
     RfFovReading nff_fov;
+    /* OBJ faces without `vn`: the crease angle in degrees (default 60). Adjacent faces of one
+     * smoothing group meeting at a sharper angle keep separate normals per corner (§3.6.3). */
+    double crease_angle;
 } RfLoadOptions;
 
 RfLoadOptions rf_load_options_default(void);
 
-/* Reads a scene file: ".nff" -> NFF, ".rf" -> refray's format, a trailing ".gz" is
+/* Reads a scene file: ".nff" -> NFF, ".rf" -> refray's format, ".obj" -> a Wavefront OBJ
+ * mesh with a default camera and headlight (rf_scene_read_obj), a trailing ".gz" is
  * decompressed first (zlib); any other name is recognised by its first keyword.
  * opt may be NULL (defaults). */
 RfStatus rf_scene_load(const char *path, const RfLoadOptions *opt, RfScene *scene, char *err,
@@ -36,6 +40,15 @@ RfStatus rf_scene_read_nff(const char *name, const char *text, size_t len,
                            const RfLoadOptions *opt, RfScene *scene, char *err, size_t errsz);
 RfStatus rf_scene_read_rf(const char *name, const char *text, size_t len, RfScene *scene,
                           char *err, size_t errsz);
+/* A Wavefront OBJ file as a whole scene: its faces (mtllib paths relative to name's folder),
+ * a camera framing the bounds from the front (+z, a little above and to the right, vfov 40
+ * edge to edge) and a headlight (a point light at the eye, intensity 1, no falloff). */
+RfStatus rf_scene_read_obj(const char *name, const char *text, size_t len,
+                           const RfLoadOptions *opt, RfScene *scene, char *err, size_t errsz);
+/* Appends the materials of MTL text to scene (docs/scene-format.md has the illum table); a
+ * name already in the scene keeps its first definition. */
+RfStatus rf_scene_read_mtl(const char *name, const char *text, size_t len, RfScene *scene,
+                           char *err, size_t errsz);
 
 #ifdef __cplusplus
 }

@@ -11,6 +11,10 @@
 #include "refray/status.h"
 #include "refray/vec.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* §3.6.2 per RGB channel, for one light of intensity I_L:
  *   ambient  = ka I_L
  *   diffuse  = kd I_L max(0, <N,L>)
@@ -55,5 +59,9 @@ RfLightSample rf_light_directional(RfRgb irradiance, RfVec3 direction);
  * theta = angle(axis, point - light_pos), axis unit. RF_ERR_DEGENERATE at the light. */
 RfStatus rf_light_spot(RfRgb intensity, RfVec3 light_pos, RfVec3 axis, double exponent,
                        double cutoff, RfFalloff falloff, RfVec3 point, RfLightSample *out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -2,6 +2,10 @@
 #ifndef REFRAY_STATUS_H
 #define REFRAY_STATUS_H
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
     RF_OK = 0,
     RF_ERR_SINGULAR,   /* a matrix or linear system has no unique solution */
@@ -14,5 +18,9 @@ typedef enum {
 
 /* A short English description of a status, e.g. "matrix is singular". */
 const char *rf_status_str(RfStatus status);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -8,6 +8,10 @@
 #include "refray/status.h"
 #include "refray/vec.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum { RF_AXIS_X = 0, RF_AXIS_Y = 1, RF_AXIS_Z = 2 } RfAxis;
 
 /* §4.2 2D matrices. */
@@ -63,5 +67,9 @@ typedef struct { RfVec3 u, v, w; } RfCameraBasis;
 RfStatus rf_camera_basis(RfVec3 eye, RfVec3 target, RfVec3 up, RfCameraBasis *out);
 /* §4.7.2 world -> camera: R_uvw (as 4x4) times T(-eye). */
 RfMat4 rf_camera_view(RfVec3 eye, RfCameraBasis basis);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

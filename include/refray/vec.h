@@ -4,6 +4,10 @@
 
 #include <math.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define RF_PI 3.14159265358979323846
 
 typedef struct { double x, y; } RfVec2;
@@ -67,5 +71,9 @@ static inline RfVec4 rf_vec4_direction(RfVec3 d) { return rf_vec4(d.x, d.y, d.z,
 /* The angle between a and b in radians, by atan2(|a x b|, <a,b>): accurate near 0 and pi,
  * where acos(<a,b>/(|a||b|)) loses half the digits. */
 double rf_vec3_angle(RfVec3 a, RfVec3 b);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -13,8 +13,10 @@
 static void usage(FILE *out)
 {
     fprintf(out, "usage: refray info [--all] [--nff-fov centres|edges] SCENE\n\n"
-                 "Loads SCENE (.nff, .rf, optionally .gz) and prints its camera, render settings,\n"
-                 "primitive counts, materials, lights, bounding box and the features it uses.\n"
+                 "Loads SCENE (.nff, .rf, .obj, optionally .gz) and prints its camera, render\n"
+                 "settings, primitive counts, the scene graph (objects, groups, instances,\n"
+                 "triangles before and after instancing), materials, lights, bounding box and\n"
+                 "the features it uses.\n"
                  "  --all        list every material and light (default: the first %d)\n"
                  "  --nff-fov    how NFF's `angle` is read: between the outermost pixel centres\n"
                  "               (default, the NFF text) or between the image edges\n",
@@ -71,6 +73,48 @@ static size_t print_prims(const RfScene *s)
            two_sided, inside, normals, nonconvex);
     printf("vertices  %zu (vertex normals %zu)\n", s->vertex_count, s->normal_count);
     return by_type[RF_PRIM_PLANE];
+}
+
+/* The scene graph (§4.8): each object with its parts and the objects it places, the world's
+ * instances, and the triangles before and after instancing. */
+static void print_graph(const RfScene *s, int all)
+{
+    size_t world_instances = 0;
+    for (size_t i = 0; i < s->prim_count; i++)
+        world_instances += s->prims[i].type == RF_PRIM_INSTANCE &&
+                           !(s->prims[i].flags & RF_PRIM_IN_OBJECT);
+    RfTriangleCount tc = rf_scene_triangle_count(s);
+    if (s->object_count || s->instance_count) {
+        printf("objects   %zu, instances %zu (%zu placed in the world; %zu after expanding groups)\n",
+               s->object_count, s->instance_count, world_instances, tc.instances_rendered);
+        for (size_t o = 0; o < s->object_count; o++) {
+            if (!all && o == INFO_LIST_MAX) {
+                printf("          ... and %zu more (--all lists them)\n", s->object_count - o);
+                break;
+            }
+            const RfSceneObject *ob = &s->objects[o];
+            size_t inst = 0, tris = 0;
+            for (size_t i = ob->first; i < ob->first + ob->count; i++) {
+                const RfPrimitive *p = &s->prims[i];
+                inst += p->type == RF_PRIM_INSTANCE;
+                tris += p->type == RF_PRIM_TRIANGLE ? 1
+                        : p->type == RF_PRIM_POLYGON && !(p->flags & RF_PRIM_NONCONVEX)
+                            ? (size_t)p->u.poly.count - 2
+                            : p->type == RF_PRIM_POLYGON;
+            }
+            printf("  %-12s %s: %zu primitives (%zu triangles), %zu instances",
+                   ob->name, inst ? "group" : "object", ob->count - inst, tris, inst);
+            const char *sep = " of";
+            for (size_t i = ob->first; i < ob->first + ob->count; i++)
+                if (s->prims[i].type == RF_PRIM_INSTANCE) {
+                    int c = s->instances[s->prims[i].u.instance].object;
+                    printf("%s %s", sep, c >= 0 ? s->objects[c].name : "?");
+                    sep = ",";
+                }
+            printf("\n");
+        }
+    }
+    printf("triangles %zu stored, %zu rendered after instancing\n", tc.stored, tc.rendered);
 }
 
 static void print_materials(const RfScene *s, int all)
@@ -160,7 +204,8 @@ int rf_cmd_info(int argc, char **argv)
         return 1;
     }
     const RfRenderSettings *r = &s.render;
-    printf("scene     %s (%s)\n", path, s.format == RF_FORMAT_NFF ? "NFF" : "refray format");
+    printf("scene     %s (%s)\n", path,
+           s.format == RF_FORMAT_NFF ? "NFF" : s.format == RF_FORMAT_OBJ ? "Wavefront OBJ" : "refray format");
     print_camera(&s);
     printf("image     %d x %d, depth %d, threshold %g, %d sample%s per pixel\n", r->width,
            r->height, r->max_depth, r->min_contribution, r->samples, r->samples == 1 ? "" : "s");
@@ -169,6 +214,7 @@ int rf_cmd_info(int argc, char **argv)
     rgb("ambient", r->ambient);
     printf("\n");
     size_t planes = print_prims(&s);
+    print_graph(&s, all);
     print_materials(&s, all);
     print_lights(&s, all);
     RfVec3 lo, hi;

@@ -6,6 +6,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "refray/camera.h"
 #include "refray/image.h"
 #include "refray/render.h"
 #include "refray/scene_io.h"
@@ -47,7 +48,9 @@ static void usage(FILE *out)
             "  SCENE      an .nff or .rf scene (docs/scene-format.md)\n"
             "  -o         linear OpenEXR output (float RGB, settings in the header)\n"
             "  --png      display PNG: gamma %.1f encoded (the script's §1.1.2), or --srgb\n"
-            "  --local    primary rays and local Phong only (no shadows, reflection, refraction)\n",
+            "  --local    primary rays and local Phong only (no shadows, reflection, refraction)\n"
+            "  --depth-out DEPTH.exr  linear eye-space depth of the primary hit through each pixel\n"
+            "             centre (distance along the view axis), +inf where the ray hits nothing\n",
             2.2);
 }
 
@@ -87,9 +90,35 @@ static int parse_int(const char *s, int lo, int hi, int *out)
     return 1;
 }
 
+/* --depth-out: the comparator's silhouette mask needs the tracer's depth. One ray through each
+ * pixel centre, from the hither plane as in rf_render; depth = t <dir, -w> (dir unit), the
+ * distance along the view axis; +inf where nothing is hit. */
+static RfStatus primary_depth(const RfScene *scene, int width, int height, RfImage *out)
+{
+    RfCamera cam;
+    RfTracer *tracer = NULL;
+    const RfSceneCamera *sc = &scene->camera;
+    RfWindow w = rf_scene_camera_window(sc, width, height);
+    RfStatus st = rf_camera_init(&cam, sc->eye, sc->target, sc->up, w.d, w.l, w.r, w.b, w.t, width, height);
+    if (st == RF_OK)
+        st = rf_tracer_create(scene, &tracer);
+    if (st == RF_OK)
+        st = rf_image_alloc(out, width, height, 1);
+    for (int y = 0; st == RF_OK && y < height; y++)
+        for (int x = 0; x < width; x++) {
+            RfRay ray = rf_camera_ray(&cam, x + 0.5, y + 0.5, 0.0, 0.0);
+            double cosw = -rf_vec3_dot(ray.dir, cam.basis.w);
+            RfSurfaceHit h;
+            int hit = rf_tracer_intersect(tracer, ray, sc->hither > 0.0 ? sc->hither / cosw : 0.0, HUGE_VAL, &h);
+            out->data[(size_t)y * width + x] = hit >= 0 ? (float)(h.t * cosw) : INFINITY;
+        }
+    rf_tracer_free(tracer);
+    return st;
+}
+
 int rf_cmd_render(int argc, char **argv)
 {
-    const char *scene_path = NULL, *exr = NULL, *png = NULL;
+    const char *scene_path = NULL, *exr = NULL, *png = NULL, *depth_out = NULL;
     RfRenderOptions opt = rf_render_options_default();
     RfLoadOptions lopt = rf_load_options_default();
     RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8};
@@ -103,6 +132,8 @@ int rf_cmd_render(int argc, char **argv)
             return 0;
         } else if (strcmp(a, "-o") == 0 && v) {
             exr = v, i++;
+        } else if (strcmp(a, "--depth-out") == 0 && v) {
+            depth_out = v, i++;
         } else if (strcmp(a, "--png") == 0 && v) {
             png = v, i++;
         } else if (strcmp(a, "--width") == 0 && v) {
@@ -168,7 +199,15 @@ int rf_cmd_render(int argc, char **argv)
     RfRenderStats st;
     RfStatus rs = rf_render(&scene, &opt, &img, &st);
     double secs = seconds_since(prog.start);
+    RfImage depth = {0, 0, 0, NULL};
+    RfStatus ds = rs == RF_OK && depth_out ? primary_depth(&scene, st.width, st.height, &depth) : RF_OK;
     rf_scene_free(&scene);
+    if (ds != RF_OK) {
+        fprintf(stderr, "refray render: %s: depth: %s\n", scene_path, rf_status_str(ds));
+        rf_image_free(&img);
+        rf_image_free(&depth);
+        return 1;
+    }
     if (rs != RF_OK) {
         fprintf(stderr, "refray render: %s: %s\n", scene_path, rf_status_str(rs));
         return 1;
@@ -195,14 +234,19 @@ int rf_cmd_render(int argc, char **argv)
         fprintf(stderr, "refray render: %s\n", err);
         rc = 1;
     }
+    if (depth_out && rf_exr_write(depth_out, &depth, NULL, 0, err, sizeof err) != RF_OK) {
+        fprintf(stderr, "refray render: %s\n", err);
+        rc = 1;
+    }
+    rf_image_free(&depth);
     rf_image_free(&img);
     if (!quiet) {
         unsigned long long rays = st.primary_rays + st.shadow_rays + st.secondary_rays;
         fprintf(stderr, "refray render: %s %dx%d, %d spp: %llu rays (%llu primary, %llu shadow, %llu secondary) "
-                        "in %.3f s, %.2f Mrays/s, %d threads\n",
+                        "in %.3f s, %.2f Mrays/s, %d threads, %llu invalid samples\n",
                 scene_path, st.width, st.height, st.samples, rays, (unsigned long long)st.primary_rays,
                 (unsigned long long)st.shadow_rays, (unsigned long long)st.secondary_rays, secs,
-                secs > 0 ? rays / secs * 1e-6 : 0.0, st.threads);
+                secs > 0 ? rays / secs * 1e-6 : 0.0, st.threads, (unsigned long long)st.invalid_samples);
     }
     return rc;
 }

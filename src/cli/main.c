@@ -16,6 +16,7 @@ static const Command commands[] = {
     {"formula", rf_cmd_formula, "compute a formula of the lecture script (list, ID key=value, --batch)"},
     {"chromaticity", rf_cmd_chromaticity, "draw the CIE 1931 xy chromaticity diagram (PNG/SVG, §1.5)"},
     {"metamers", rf_cmd_metamers, "two different spectra with the same XYZ and LMS (§1.3.1)"},
+    {"diff", rf_cmd_diff, "compare two images (EXR/PNG): errors, silhouettes, heatmap; exits like idiff"},
     {"info", rf_cmd_info, "load a scene (.nff, .rf): counts, materials, lights, features used"},
 };
 

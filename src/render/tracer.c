@@ -12,6 +12,7 @@
 #include "refray/optics.h"
 #include "refray/rng.h"
 #include "refray/shading.h"
+#include "refray/transform.h"
 
 /* One thing the BVH holds: a primitive, or one fan triangle (sub >= 0) of a convex polygon
  * (triangle v0, v(sub+1), v(sub+2)). */
@@ -19,13 +20,20 @@ typedef struct {
     int prim, sub;
 } Item;
 
-struct RfTracer {
-    const RfScene *scene;
+/* The items of the world, or of one object in its own space (§4.8). */
+typedef struct {
     RfBvh bvh;
     Item *items;       /* bounded items, indexed by the BVH */
     int item_count;
     int *planes;       /* unbounded primitives, tested for every ray */
     int plane_count;
+    int state;         /* objects: 0 not built, 1 building, 2 built */
+} Level;
+
+struct RfTracer {
+    const RfScene *scene;
+    Level world;
+    Level *objects;    /* per RfScene.objects: one BVH each, shared by all its instances */
     RfVec3 *poly_normal; /* per primitive: unit normal of a non-convex polygon (Newell) */
 };
 
@@ -91,58 +99,106 @@ static RfAabb item_box(const RfScene *s, Item it)
     return b;
 }
 
+static void level_free(Level *lv)
+{
+    rf_bvh_free(&lv->bvh);
+    free(lv->items);
+    free(lv->planes);
+}
+
 void rf_tracer_free(RfTracer *t)
 {
     if (!t)
         return;
-    rf_bvh_free(&t->bvh);
-    free(t->items);
-    free(t->planes);
+    level_free(&t->world);
+    for (size_t o = 0; t->objects && o < t->scene->object_count; o++)
+        level_free(&t->objects[o]);
+    free(t->objects);
     free(t->poly_normal);
     free(t);
 }
 
-RfStatus rf_tracer_create(const RfScene *scene, RfTracer **out)
+static RfStatus build_object(RfTracer *t, int o);
+
+/* An instance's box: the 8 corners of its object's box taken to world space, padded by a few
+ * ulps so that the rounding of the corners never culls a ray (§4.8). Returns 0 for an object
+ * with unbounded parts (the instance is then tested for every ray) and -1 for an empty one. */
+static int instance_box(const RfTracer *t, const RfPrimitive *p, RfAabb *b)
 {
-    RfTracer *t = calloc(1, sizeof *t);
+    const RfInstance *in = &t->scene->instances[p->u.instance];
+    const Level *lv = &t->objects[in->object];
+    if (lv->plane_count > 0)
+        return 0;
+    if (lv->bvh.node_count == 0)
+        return -1;
+    RfAabb ob = lv->bvh.nodes[0].box;
+    *b = rf_aabb_empty();
+    for (int c = 0; c < 8; c++) {
+        RfVec3 k = rf_vec3(c & 1 ? ob.hi.x : ob.lo.x, c & 2 ? ob.hi.y : ob.lo.y, c & 4 ? ob.hi.z : ob.lo.z);
+        if (rf_transform_point(in->to_world, k, &k) != RF_OK)
+            return 0;
+        *b = rf_aabb_add_point(*b, k);
+    }
+    double m = fmax(fmax(fmax(fabs(b->lo.x), fabs(b->hi.x)), fmax(fabs(b->lo.y), fabs(b->hi.y))),
+                    fmax(fabs(b->lo.z), fabs(b->hi.z)));
+    RfVec3 pad = rf_vec3(16.0 * DBL_EPSILON * m, 16.0 * DBL_EPSILON * m, 16.0 * DBL_EPSILON * m);
+    b->lo = rf_vec3_sub(b->lo, pad);
+    b->hi = rf_vec3_add(b->hi, pad);
+    return 1;
+}
+
+/* Items and BVH of prims[first, end): the world (objects' parts skipped) or one object. The
+ * objects placed by instances here are built first. */
+static RfStatus build_level(RfTracer *t, size_t first, size_t end, int world, Level *lv)
+{
+    const RfScene *scene = t->scene;
     size_t n_items = 0;
-    *out = NULL;
-    if (!t)
-        return RF_ERR_NOMEM;
-    t->scene = scene;
-    for (size_t i = 0; i < scene->prim_count; i++) {
+    RfStatus st;
+    for (size_t i = first; i < end; i++) {
         const RfPrimitive *p = &scene->prims[i];
+        if (world && (p->flags & RF_PRIM_IN_OBJECT))
+            continue;
+        if (p->type == RF_PRIM_INSTANCE &&
+            (st = build_object(t, scene->instances[p->u.instance].object)) != RF_OK)
+            return st;
         if (p->type == RF_PRIM_POLYGON && !(p->flags & RF_PRIM_NONCONVEX))
             n_items += (size_t)p->u.poly.count - 2;
         else if (p->type != RF_PRIM_PLANE)
             n_items++;
         else
-            t->plane_count++;
+            lv->plane_count++;
     }
-    if (n_items > (size_t)INT32_MAX / 2) {
-        rf_tracer_free(t);
+    if (n_items > (size_t)INT32_MAX / 2)
         return RF_ERR_NOMEM;
-    }
-    t->items = malloc(sizeof *t->items * (n_items ? n_items : 1));
-    t->planes = malloc(sizeof *t->planes * (size_t)(t->plane_count ? t->plane_count : 1));
-    t->poly_normal = calloc(scene->prim_count ? scene->prim_count : 1, sizeof *t->poly_normal);
+    lv->items = malloc(sizeof *lv->items * (n_items ? n_items : 1));
+    lv->planes = malloc(sizeof *lv->planes * (n_items + (size_t)lv->plane_count + 1));
     RfAabb *boxes = malloc(sizeof *boxes * (n_items ? n_items : 1));
-    if (!t->items || !t->planes || !t->poly_normal || !boxes) {
+    if (!lv->items || !lv->planes || !boxes) {
         free(boxes);
-        rf_tracer_free(t);
         return RF_ERR_NOMEM;
     }
-    t->plane_count = 0;
-    for (size_t i = 0; i < scene->prim_count; i++) {
+    lv->plane_count = 0;
+    for (size_t i = first; i < end; i++) {
         const RfPrimitive *p = &scene->prims[i];
         Item it = {(int)i, -1};
-        if (p->type == RF_PRIM_PLANE) {
-            t->planes[t->plane_count++] = (int)i;
+        if (world && (p->flags & RF_PRIM_IN_OBJECT))
+            continue;
+        if (p->type == RF_PRIM_INSTANCE) {
+            RfAabb b;
+            int bounded = instance_box(t, p, &b);
+            if (bounded > 0) {
+                boxes[lv->item_count] = b;
+                lv->items[lv->item_count++] = it;
+            } else if (bounded == 0) {
+                lv->planes[lv->plane_count++] = (int)i;
+            }
+        } else if (p->type == RF_PRIM_PLANE) {
+            lv->planes[lv->plane_count++] = (int)i;
         } else if (p->type == RF_PRIM_POLYGON && !(p->flags & RF_PRIM_NONCONVEX)) {
             for (int k = 0; k + 2 < p->u.poly.count; k++) {
                 it.sub = k;
-                boxes[t->item_count] = item_box(scene, it);
-                t->items[t->item_count++] = it;
+                boxes[lv->item_count] = item_box(scene, it);
+                lv->items[lv->item_count++] = it;
             }
         } else {
             if (p->type == RF_PRIM_TRIANGLE)
@@ -155,12 +211,43 @@ RfStatus rf_tracer_create(const RfScene *scene, RfTracer **out)
                 }
                 t->poly_normal[i] = rf_vec3_normalize(n);
             }
-            boxes[t->item_count] = item_box(scene, it);
-            t->items[t->item_count++] = it;
+            boxes[lv->item_count] = item_box(scene, it);
+            lv->items[lv->item_count++] = it;
         }
     }
-    RfStatus st = rf_bvh_build(&t->bvh, boxes, t->item_count);
+    st = rf_bvh_build(&lv->bvh, boxes, lv->item_count);
     free(boxes);
+    return st;
+}
+
+/* One object's level, built once however many instances place it (§4.8). */
+static RfStatus build_object(RfTracer *t, int o)
+{
+    if (o < 0 || (size_t)o >= t->scene->object_count)
+        return RF_ERR_DOMAIN;
+    Level *lv = &t->objects[o];
+    if (lv->state == 2)
+        return RF_OK;
+    if (lv->state == 1) /* a cycle: rf_scene_validate reports it with its position */
+        return RF_ERR_DOMAIN;
+    lv->state = 1;
+    const RfSceneObject *ob = &t->scene->objects[o];
+    RfStatus st = build_level(t, ob->first, ob->first + ob->count, 0, lv);
+    lv->state = 2;
+    return st;
+}
+
+RfStatus rf_tracer_create(const RfScene *scene, RfTracer **out)
+{
+    RfTracer *t = calloc(1, sizeof *t);
+    *out = NULL;
+    if (!t)
+        return RF_ERR_NOMEM;
+    t->scene = scene;
+    t->poly_normal = calloc(scene->prim_count ? scene->prim_count : 1, sizeof *t->poly_normal);
+    t->objects = calloc(scene->object_count ? scene->object_count : 1, sizeof *t->objects);
+    RfStatus st = t->poly_normal && t->objects ? build_level(t, 0, scene->prim_count, 1, &t->world)
+                                               : RF_ERR_NOMEM;
     if (st != RF_OK) {
         rf_tracer_free(t);
         return st;
@@ -193,11 +280,42 @@ static int inside_polygon(const RfScene *s, const RfPrimitive *p, RfVec3 n, RfVe
 
 typedef struct {
     const RfTracer *tracer;
+    const Level *level; /* the world or the object being searched */
     RfWatertightRay wr;
     int shadow;    /* shadow rays: every surface blocks, whichever side */
-    Item item;     /* the item hit last */
-    RfHit hit;
+    Item item;     /* the item hit last (inside instances: the object's primitive) */
+    RfHit hit;     /* hit.normal in the space of the query's ray */
+    int instanced; /* the hit is inside an instance: nmat takes its normals to this space */
+    RfMat3 nmat;
 } Query;
+
+static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, double *t_max);
+
+/* §4.8/§4.9: the ray goes into object space by M^-1 without normalising its direction, so t
+ * is the same in both spaces; the normal comes back by the inverse transpose (M^-1)^T. */
+static int hit_instance(Query *q, const RfPrimitive *p, RfRay ray, double t_min, double *t_max)
+{
+    const RfTracer *t = q->tracer;
+    const RfInstance *in = &t->scene->instances[p->u.instance];
+    RfRay r;
+    if (rf_transform_point(in->to_object, ray.origin, &r.origin) != RF_OK)
+        return 0;
+    r.dir = rf_transform_direction(in->to_object, ray.dir);
+    Query sub;
+    memset(&sub, 0, sizeof sub);
+    sub.tracer = t;
+    sub.shadow = q->shadow;
+    double tm = *t_max;
+    if (!trace_level(&t->objects[in->object], &sub, r, t_min, &tm))
+        return 0;
+    q->hit = sub.hit;
+    q->hit.normal = rf_vec3_normalize(rf_mat3_mul_vec(in->normal_to_world, sub.hit.normal));
+    q->item = sub.item;
+    q->nmat = sub.instanced ? rf_mat3_mul(in->normal_to_world, sub.nmat) : in->normal_to_world;
+    q->instanced = 1;
+    *t_max = sub.hit.t;
+    return 1;
+}
 
 /* Intersects one item; on a hit in [t_min, *t_max) lowers *t_max and keeps the hit. */
 static int hit_item(Query *q, Item it, RfRay ray, double t_min, double *t_max)
@@ -206,6 +324,9 @@ static int hit_item(Query *q, Item it, RfRay ray, double t_min, double *t_max)
     const RfPrimitive *p = &s->prims[it.prim];
     RfHit h;
     int ok = 0;
+    if (p->type == RF_PRIM_INSTANCE)
+        return hit_instance(q, p, ray, t_min, t_max);
+again:
     switch (p->type) {
     case RF_PRIM_SPHERE: {
         ok = rf_intersect_sphere(ray, p->u.sphere, RF_SPHERE_STABLE, t_min, *t_max, &h);
@@ -239,38 +360,54 @@ static int hit_item(Query *q, Item it, RfRay ray, double t_min, double *t_max)
         /* one-sided: visible only from the front (outside, counter-clockwise side), or only
          * from the inside for RF_PRIM_INSIDE */
         int front = rf_vec3_dot(ray.dir, h.normal) < 0.0;
-        if (front == !!(p->flags & RF_PRIM_INSIDE))
+        if (front == !!(p->flags & RF_PRIM_INSIDE)) {
+            /* the hidden side of a sphere or cone: its far root may face the ray (an inside-only
+             * sphere seen from outside shows its far wall) */
+            if (p->type == RF_PRIM_SPHERE || p->type == RF_PRIM_CONE) {
+                t_min = nextafter(h.t, HUGE_VAL);
+                goto again;
+            }
             return 0;
+        }
     }
     *t_max = h.t;
     q->hit = h;
     q->item = it;
+    q->instanced = 0;
     return 1;
 }
 
 static int bvh_leaf(void *ctx, int index, RfRay ray, double t_min, double *t_max)
 {
     Query *q = ctx;
-    return hit_item(q, q->tracer->items[index], ray, t_min, t_max);
+    return hit_item(q, q->level->items[index], ray, t_min, t_max);
 }
 
-/* The nearest (or, shadow = 1, any) hit in [t_min, t_max); returns 1 with q->hit/q->item. */
-static int trace_query(const RfTracer *t, Query *q, RfRay ray, double t_min, double t_max)
+/* The nearest (or, shadow = 1, any) hit in one level in [t_min, *t_max); returns 1 with
+ * q->hit/q->item and lowers *t_max. */
+static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, double *t_max)
 {
     int found = 0;
-    q->tracer = t;
+    q->level = lv;
     q->wr = rf_watertight_ray(ray);
-    for (int i = 0; i < t->plane_count; i++) {
-        Item it = {t->planes[i], -1};
-        if (hit_item(q, it, ray, t_min, &t_max)) {
+    for (int i = 0; i < lv->plane_count; i++) {
+        Item it = {lv->planes[i], -1};
+        if (hit_item(q, it, ray, t_min, t_max)) {
             found = 1;
             if (q->shadow)
                 return 1;
         }
     }
-    if (rf_bvh_intersect(&t->bvh, ray, t_min, &t_max, bvh_leaf, q, q->shadow) >= 0)
+    if (rf_bvh_intersect(&lv->bvh, ray, t_min, t_max, bvh_leaf, q, q->shadow) >= 0)
         found = 1;
     return found;
+}
+
+/* The nearest (or, shadow = 1, any) hit in [t_min, t_max); returns 1 with q->hit/q->item. */
+static int trace_query(const RfTracer *t, Query *q, RfRay ray, double t_min, double t_max)
+{
+    q->tracer = t;
+    return trace_level(&t->world, q, ray, t_min, &t_max);
 }
 
 int rf_tracer_intersect(const RfTracer *t, RfRay ray, double t_min, double t_max, RfSurfaceHit *out)
@@ -294,6 +431,8 @@ int rf_tracer_intersect(const RfTracer *t, RfRay ray, double t_min, double t_max
         RfVec3 n;
         if (rf_interpolate_normal(nv[0], nv[q.item.sub + 1], nv[q.item.sub + 2], q.hit.l[0], q.hit.l[1],
                                   q.hit.l[2], &n) == RF_OK) {
+            if (q.instanced) /* object space -> world (§4.9) */
+                n = rf_vec3_normalize(rf_mat3_mul_vec(q.nmat, n));
             /* keep it on the side of the geometric normal the ray sees */
             out->shading_normal = rf_vec3_dot(n, out->normal) < 0.0 ? rf_vec3_neg(n) : n;
         }
@@ -318,11 +457,16 @@ typedef struct {
 
 /* A point moved off the surface to the side the new ray leaves by (DESIGN.md numeric policy:
  * RF_RAY_OFFSET_REL, numeric.h), so that the new ray does not hit its own surface again. */
-static RfVec3 offset_origin(RfVec3 p, RfVec3 n, RfVec3 dir)
+RfVec3 rf_ray_offset_origin(RfVec3 p, RfVec3 n, RfVec3 dir, double fixed_offset)
 {
     double scale = fmax(1.0, fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))));
-    double eps = RF_RAY_OFFSET_REL * scale;
+    double eps = fixed_offset > 0.0 ? fixed_offset : RF_RAY_OFFSET_REL * scale;
     return rf_vec3_add(p, rf_vec3_scale(n, rf_vec3_dot(dir, n) >= 0.0 ? eps : -eps));
+}
+
+static RfVec3 offset_origin(const Job *job, RfVec3 p, RfVec3 n, RfVec3 dir)
+{
+    return rf_ray_offset_origin(p, n, dir, job->opt->fixed_offset);
 }
 
 static int light_sample(const RfLight *l, RfVec3 point, RfLightSample *out)
@@ -365,7 +509,7 @@ static RfRgb trace(const Job *job, RfRay ray, double t_min, int depth, double we
             continue;
         if (!job->opt->local_only) {
             /* §3.8 shadow ray to the light: any surface in between blocks it (opaque shadows) */
-            RfRay sr = rf_ray(offset_origin(h.point, h.normal, ls.l), ls.l);
+            RfRay sr = rf_ray(offset_origin(job, h.point, h.normal, ls.l), ls.l);
             double dist = isinf(ls.distance) ? HUGE_VAL
                                              : rf_vec3_length(rf_vec3_sub(rf_vec3_add(h.point,
                                                    rf_vec3_scale(ls.l, ls.distance)), sr.origin));
@@ -406,12 +550,12 @@ static RfRgb trace(const Job *job, RfRay ray, double t_min, int depth, double we
     }
     if (rgb_max(wr) > 0.0 && weight * rgb_max(wr) >= job->min_contribution) {
         RfVec3 rdir = rf_reflect_dir(rf_vec3_neg(v), n);
-        RfRay rr = rf_ray(offset_origin(h.point, h.normal, rdir), rdir);
+        RfRay rr = rf_ray(offset_origin(job, h.point, h.normal, rdir), rdir);
         st->secondary_rays++;
         color = rf_rgb_add(color, rf_rgb_mul(wr, trace(job, rr, 0.0, depth + 1, weight * rgb_max(wr), st)));
     }
     if (refracts && rgb_max(wt) > 0.0 && weight * rgb_max(wt) >= job->min_contribution) {
-        RfRay tr = rf_ray(offset_origin(h.point, h.normal, tdir), tdir);
+        RfRay tr = rf_ray(offset_origin(job, h.point, h.normal, tdir), tdir);
         st->secondary_rays++;
         color = rf_rgb_add(color, rf_rgb_mul(wt, trace(job, tr, 0.0, depth + 1, weight * rgb_max(wt), st)));
     }
@@ -454,7 +598,13 @@ static int render_tile(void *ctx, RfTile tile, int thread)
                                    ? job->hither / -rf_vec3_dot(ray.dir, job->camera.basis.w)
                                    : 0.0;
                 st->primary_rays++;
-                sum = rf_rgb_add(sum, trace(job, ray, t_min, 1, 1.0, st));
+                RfRgb c = trace(job, ray, t_min, 1, 1.0, st);
+                if (!isfinite(c.r) || !isfinite(c.g) || !isfinite(c.b)) {
+                    /* never let NaN/Inf reach the film: count it (reported), store black */
+                    st->invalid_samples++;
+                    c = rf_rgb(0, 0, 0);
+                }
+                sum = rf_rgb_add(sum, c);
             }
             float *px = job->img->data + (size_t)pixel * 3;
             px[0] = (float)(sum.r / job->samples);
@@ -510,6 +660,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
         stats->primary_rays += job.per_thread[i].primary_rays;
         stats->shadow_rays += job.per_thread[i].shadow_rays;
         stats->secondary_rays += job.per_thread[i].secondary_rays;
+        stats->invalid_samples += job.per_thread[i].invalid_samples;
     }
     stats->width = job.width;
     stats->height = job.height;

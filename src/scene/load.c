@@ -137,6 +137,24 @@ static RfStatus read_file(const char *path, int gz, char **text, size_t *len, ch
     return RF_OK;
 }
 
+RfStatus rf__reader_read_file(const char *path, char **text, size_t *len, char *err, size_t errsz)
+{
+    size_t n = strlen(path);
+    return read_file(path, ends_with(path, n, ".gz"), text, len, err, errsz);
+}
+
+int rf__reader_relative_path(const char *base, const char *rel, size_t rel_len, char *out, size_t n)
+{
+    const char *slash = strrchr(base, '/');
+    size_t dir = rel_len > 0 && rel[0] == '/' ? 0 : slash ? (size_t)(slash - base) + 1 : 0;
+    if (dir + rel_len + 1 > n)
+        return 0;
+    memcpy(out, base, dir);
+    memcpy(out + dir, rel, rel_len);
+    out[dir + rel_len] = 0;
+    return 1;
+}
+
 /* Without a known extension: NFF when the first keyword is one of NFF's. */
 static int looks_like_nff(const char *text, size_t len)
 {
@@ -162,9 +180,13 @@ RfStatus rf_scene_load(const char *path, const RfLoadOptions *opt, RfScene *scen
     if (st)
         return st;
     int nff = ends_with(path, base, ".nff") ||
-              (!ends_with(path, base, ".rf") && looks_like_nff(text, len));
-    st = nff ? rf_scene_read_nff(path, text, len, opt, scene, err, errsz)
-             : rf_scene_read_rf(path, text, len, scene, err, errsz);
+              (!ends_with(path, base, ".rf") && !ends_with(path, base, ".obj") &&
+               looks_like_nff(text, len));
+    if (ends_with(path, base, ".obj"))
+        st = rf_scene_read_obj(path, text, len, opt, scene, err, errsz);
+    else
+        st = nff ? rf_scene_read_nff(path, text, len, opt, scene, err, errsz)
+                 : rf_scene_read_rf(path, text, len, scene, err, errsz);
     free(text);
     return st;
 }

@@ -20,4 +20,25 @@ RfStatus rf__reader_default_material(RfLexer *lx, RfScene *scene, const RfToken 
  * scene, and frees it on any failure. */
 RfStatus rf__reader_finish(RfLexer *lx, RfScene *scene, RfStatus st);
 
+/* A whole file (a trailing .gz decompressed) into a malloc'd buffer; on failure err gets
+ * "path:1:1: cannot open: ..." (load.c). */
+RfStatus rf__reader_read_file(const char *path, char **text, size_t *len, char *err, size_t errsz);
+/* rel resolved against the folder of the file `base` (rel itself when absolute); 0 when it
+ * does not fit into n bytes. */
+int rf__reader_relative_path(const char *base, const char *rel, size_t rel_len, char *out, size_t n);
+
+/* How the faces of an OBJ file enter a scene (obj.c): the refray-format `mesh` statement and
+ * rf_scene_read_obj. */
+typedef struct {
+    double crease_deg;   /* edges sharper than this keep separate normals per corner (§3.6.3) */
+    int material;        /* material of faces before any usemtl; -1: a white "default" one */
+    unsigned prim_flags; /* added to every face (RF_PRIM_IN_OBJECT inside an object) */
+} RfObjPlacement;
+/* Appends the faces of OBJ text (materials of its mtllib files too). */
+RfStatus rf__obj_read(const char *name, const char *text, size_t len, const RfObjPlacement *pl,
+                      RfScene *scene, char *err, size_t errsz);
+/* Reads an OBJ file from disk with rf__obj_read. */
+RfStatus rf__obj_load(const char *path, const RfObjPlacement *pl, RfScene *scene, char *err,
+                      size_t errsz);
+
 #endif

@@ -12,15 +12,27 @@
 
 #include "reader.h"
 #include "refray/scene_io.h"
+#include "refray/transform.h"
 
 #define RF_MAX_POLY_VERTICES 1000000
+#define RF_PATH_MAX 4096
+
+/* An `instance` whose object is looked up at the end of the file (forward references). */
+typedef struct {
+    size_t instance;
+    RfToken name;
+} PendingRef;
 
 typedef struct {
     RfLexer lx;
     RfScene *scene;
     int material;      /* current material, -1 before the first */
+    int object;        /* the object block being read (§4.8), -1 in the world */
+    RfToken object_kw; /* its keyword, for "no 'end'" */
     RfVec3 *vbuf, *nbuf; /* scratch for polygon vertices and normals */
     size_t vcap;
+    PendingRef *refs;
+    size_t ref_count, ref_cap;
 } RfReader;
 
 static RfSrcLoc loc_of(const RfToken *t)
@@ -320,6 +332,7 @@ static RfStatus read_primitive(RfReader *r, const RfToken *kw)
     p.material = r->material;
     p.flags = RF_PRIM_TWO_SIDED;
     p.loc = loc_of(kw);
+    unsigned in_object = r->object >= 0 ? RF_PRIM_IN_OBJECT : 0u;
     if (rf_lex_is(kw, "sphere")) {
         p.type = RF_PRIM_SPHERE;
         if (!(st = rf_lex_vec3(lx, "sphere centre", &p.u.sphere.center)))
@@ -369,6 +382,7 @@ static RfStatus read_primitive(RfReader *r, const RfToken *kw)
     }
     if (st)
         return st;
+    p.flags |= in_object;
     if (n > 0) {
         p.u.poly.count = n;
         if (normals)
@@ -378,6 +392,236 @@ static RfStatus read_primitive(RfReader *r, const RfToken *kw)
             return rf_lex_error(lx, kw->line, kw->col, "out of memory");
     }
     return rf__reader_add_prim(lx, r->scene, &p);
+}
+
+/* ---- the scene graph (§4.8) ---------------------------------------------------------------- */
+
+static int find_object(const RfScene *s, const char *name, size_t len)
+{
+    for (size_t i = 0; i < s->object_count; i++)
+        if (strlen(s->objects[i].name) == len && memcmp(s->objects[i].name, name, len) == 0)
+            return (int)i;
+    return -1;
+}
+
+/* object NAME / group NAME: the statements up to `end` make one object. Blocks do not nest;
+ * an object goes into another through `instance`. */
+static RfStatus read_object(RfReader *r, const RfToken *kw)
+{
+    RfLexer *lx = &r->lx;
+    RfToken name;
+    char q[96], k[96], nm[RF_NAME_MAX];
+    if (r->object >= 0)
+        return rf_lex_error(lx, kw->line, kw->col,
+                            "%s inside object '%s': blocks do not nest (close it with 'end'; "
+                            "place objects in objects with 'instance')",
+                            rf_lex_quote(kw, k, sizeof k), r->scene->objects[r->object].name);
+    RfStatus st = rf_lex_word(lx, "an object name", &name);
+    if (st)
+        return st;
+    if (name.len >= RF_NAME_MAX)
+        return rf_lex_error(lx, name.line, name.col, "object name %s is longer than %d bytes",
+                            rf_lex_quote(&name, q, sizeof q), RF_NAME_MAX - 1);
+    if (find_object(r->scene, name.s, name.len) >= 0)
+        return rf_lex_error(lx, name.line, name.col, "object %s is defined twice",
+                            rf_lex_quote(&name, q, sizeof q));
+    memcpy(nm, name.s, name.len);
+    nm[name.len] = 0;
+    if (rf_scene_add_object(r->scene, nm, loc_of(kw), &r->object))
+        return rf_lex_error(lx, kw->line, kw->col, "out of memory");
+    r->object_kw = *kw;
+    return no_attrs(lx, kw);
+}
+
+static RfStatus read_end(RfReader *r, const RfToken *kw)
+{
+    if (r->object < 0)
+        return rf_lex_error(&r->lx, kw->line, kw->col, "'end' without an 'object' or 'group'");
+    RfSceneObject *o = &r->scene->objects[r->object];
+    o->count = r->scene->prim_count - o->first;
+    r->object = -1;
+    return no_attrs(&r->lx, kw);
+}
+
+/* One transform of an instance, composed after the ones before it (they act first):
+ * M = step * M. Angles in degrees. *known = 0 when a is not a transform keyword. */
+static RfStatus read_transform(RfReader *r, const RfToken *a, RfMat4 *m, int *known)
+{
+    RfLexer *lx = &r->lx;
+    RfStatus st = RF_OK;
+    RfMat4 step = rf_mat4_identity();
+    RfMat3 rot;
+    RfVec3 v;
+    double deg;
+    char q[96];
+    *known = 1;
+    if (rf_lex_is(a, "translate")) {
+        if (!(st = rf_lex_vec3(lx, "translation", &v)))
+            step = rf_mat4_translate(v);
+    } else if (rf_lex_is(a, "scale")) {
+        if (!(st = rf_lex_number(lx, "scale factor", &v.x))) {
+            v.y = v.z = v.x;
+            if (lx->tok.kind == RF_TOK_NUMBER && !rf_lex_at_statement_start(lx) &&
+                !(st = rf_lex_number(lx, "scale factor", &v.y)))
+                st = rf_lex_number(lx, "scale factor", &v.z);
+        }
+        if (!st && !(v.x != 0.0 && v.y != 0.0 && v.z != 0.0))
+            st = rf_lex_error(lx, a->line, a->col, "scale factors must be non-zero");
+        step = rf_mat4_scale(v.x, v.y, v.z);
+    } else if (rf_lex_is(a, "rotate")) {
+        RfToken ax;
+        if ((st = rf_lex_word(lx, "an axis (x, y, z)", &ax)))
+            return st;
+        if (!rf_lex_is(&ax, "x") && !rf_lex_is(&ax, "y") && !rf_lex_is(&ax, "z"))
+            return rf_lex_error(lx, ax.line, ax.col, "rotate needs an axis x, y or z, found %s",
+                                rf_lex_quote(&ax, q, sizeof q));
+        if (!(st = rf_lex_number(lx, "rotation angle", &deg)))
+            step = rf_mat4_rotate((RfAxis)(ax.s[0] - 'x'), deg * (RF_PI / 180.0));
+    } else if (rf_lex_is(a, "axis-angle")) {
+        if (!(st = rf_lex_vec3(lx, "rotation axis", &v)) &&
+            !(st = rf_lex_number(lx, "rotation angle", &deg))) {
+            if (rf_mat3_axis_angle(v, deg * (RF_PI / 180.0), &rot, NULL, NULL) != RF_OK)
+                return rf_lex_error(lx, a->line, a->col, "axis-angle: the axis has zero length");
+            step = rf_mat4_affine(rot, rf_vec3(0, 0, 0));
+        }
+    } else if (rf_lex_is(a, "euler")) {
+        static const char *const orders[] = {"zyx", "xyz", "zxz", "zyz"};
+        RfToken o;
+        double psi, theta, phi;
+        int k = -1;
+        if ((st = rf_lex_word(lx, "an Euler order (zyx, xyz, zxz, zyz)", &o)))
+            return st;
+        for (int i = 0; i < 4; i++)
+            if (rf_lex_is(&o, orders[i]))
+                k = i;
+        if (k < 0)
+            return rf_lex_error(lx, o.line, o.col, "unknown Euler order %s (zyx, xyz, zxz, zyz)",
+                                rf_lex_quote(&o, q, sizeof q));
+        if (!(st = rf_lex_number(lx, "Euler angle psi", &psi)) &&
+            !(st = rf_lex_number(lx, "Euler angle theta", &theta)) &&
+            !(st = rf_lex_number(lx, "Euler angle phi", &phi)))
+            step = rf_mat4_affine(rf_mat3_euler((RfEulerOrder)k, psi * (RF_PI / 180.0),
+                                                theta * (RF_PI / 180.0), phi * (RF_PI / 180.0)),
+                                  rf_vec3(0, 0, 0));
+    } else if (rf_lex_is(a, "matrix")) {
+        for (int i = 0; !st && i < 3; i++)
+            for (int j = 0; !st && j < 4; j++)
+                st = rf_lex_number(lx, "matrix entry (3 rows of 4)", &step.m[i][j]);
+    } else {
+        *known = 0;
+        return RF_OK;
+    }
+    if (!st)
+        *m = rf_mat4_mul(step, *m);
+    return st;
+}
+
+/* instance NAME transforms...: places an object (defined before or after) by the composed
+ * transform; inside an object block it makes that object a group containing NAME. */
+static RfStatus read_instance(RfReader *r, const RfToken *kw)
+{
+    RfLexer *lx = &r->lx;
+    RfToken name, a;
+    RfMat4 m = rf_mat4_identity();
+    RfPrimitive p;
+    RfStatus st = rf_lex_word(lx, "an object name", &name);
+    while (!st && next_attr(lx, &a)) {
+        int known;
+        st = read_transform(r, &a, &m, &known);
+        if (!known)
+            return bad_attr(lx, kw, &a);
+    }
+    if (!st)
+        st = rf__reader_default_material(lx, r->scene, kw, &r->material);
+    if (st)
+        return st;
+    memset(&p, 0, sizeof p);
+    p.type = RF_PRIM_INSTANCE;
+    p.flags = RF_PRIM_TWO_SIDED | (r->object >= 0 ? RF_PRIM_IN_OBJECT : 0u);
+    p.material = r->material; /* unused: the object's primitives have their own */
+    p.loc = loc_of(kw);
+    st = rf_scene_add_instance(r->scene, -1, m, &p.u.instance);
+    if (st == RF_ERR_SINGULAR)
+        return rf_lex_error(lx, kw->line, kw->col, "instance transform is singular (a zero scale?)");
+    if (!st && r->ref_count == r->ref_cap) {
+        size_t cap = r->ref_cap ? 2 * r->ref_cap : 16;
+        PendingRef *refs = realloc(r->refs, cap * sizeof *refs);
+        if (refs) {
+            r->refs = refs;
+            r->ref_cap = cap;
+        } else {
+            st = RF_ERR_NOMEM;
+        }
+    }
+    if (st)
+        return rf_lex_error(lx, kw->line, kw->col, "out of memory");
+    r->refs[r->ref_count].instance = p.u.instance;
+    r->refs[r->ref_count].name = name;
+    r->ref_count++;
+    return rf__reader_add_prim(lx, r->scene, &p);
+}
+
+/* The end of the file: every block closed, every instance's object known. Cycles are found
+ * by rf_scene_validate (rf_scene_graph_check) at the instance that closes them. */
+static RfStatus resolve_refs(RfReader *r)
+{
+    char q[96];
+    if (r->object >= 0)
+        return rf_lex_error(&r->lx, r->object_kw.line, r->object_kw.col,
+                            "object '%s' has no 'end'", r->scene->objects[r->object].name);
+    for (size_t i = 0; i < r->ref_count; i++) {
+        const RfToken *n = &r->refs[i].name;
+        int o = find_object(r->scene, n->s, n->len);
+        if (o < 0)
+            return rf_lex_error(&r->lx, n->line, n->col, "unknown object %s",
+                                rf_lex_quote(n, q, sizeof q));
+        r->scene->instances[r->refs[i].instance].object = o;
+    }
+    return RF_OK;
+}
+
+/* mesh PATH [crease DEG]: the faces of an OBJ file (path relative to this file) in the world
+ * or in the object being read; faces before the OBJ's first usemtl take the current material. */
+static RfStatus read_mesh(RfReader *r, const RfToken *kw)
+{
+    RfLexer *lx = &r->lx;
+    RfToken file, a;
+    char path[RF_PATH_MAX], q[96];
+    RfObjPlacement pl;
+    RfStatus st = RF_OK;
+    pl.crease_deg = 60.0;
+    pl.material = r->material;
+    pl.prim_flags = r->object >= 0 ? RF_PRIM_IN_OBJECT : 0u;
+    if (rf_lex_at_statement_start(lx))
+        return rf_lex_error(lx, lx->last_end_line, lx->last_end_col, "mesh needs an OBJ file name");
+    file = lx->tok; /* any token: "./a.obj" reads as a number */
+    rf_lex_advance(lx);
+    while (!st && next_attr(lx, &a)) {
+        if (rf_lex_is(&a, "crease")) {
+            if (!(st = rf_lex_number(lx, "crease angle", &pl.crease_deg)))
+                st = rf_lex_check(lx, pl.crease_deg >= 0.0 && pl.crease_deg <= 180.0,
+                                  "crease angle must be in [0, 180] degrees");
+        } else {
+            return bad_attr(lx, kw, &a);
+        }
+    }
+    if (st)
+        return st;
+    if (!rf__reader_relative_path(lx->name, file.s, file.len, path, sizeof path))
+        return rf_lex_error(lx, file.line, file.col, "path %s is too long",
+                            rf_lex_quote(&file, q, sizeof q));
+    char why[512];
+    char *text = NULL;
+    size_t len = 0;
+    if (rf__reader_read_file(path, &text, &len, why, sizeof why)) {
+        const char *msg = strstr(why, ": ") ? strstr(why, ": ") + 2 : why;
+        msg = strstr(msg, ": ") ? strstr(msg, ": ") + 2 : msg; /* drop "path:1:1: " */
+        return rf_lex_error(lx, file.line, file.col, "mesh %s: %s", rf_lex_quote(&file, q, sizeof q),
+                            msg);
+    }
+    st = rf__obj_read(path, text, len, &pl, r->scene, lx->err, lx->errsz);
+    free(text);
+    return st;
 }
 
 static RfStatus read_statement(RfReader *r, const RfToken *kw)
@@ -392,6 +636,14 @@ static RfStatus read_statement(RfReader *r, const RfToken *kw)
         return read_material(r, kw);
     if (rf_lex_is(kw, "light"))
         return read_light(r, kw);
+    if (rf_lex_is(kw, "object") || rf_lex_is(kw, "group"))
+        return read_object(r, kw);
+    if (rf_lex_is(kw, "end"))
+        return read_end(r, kw);
+    if (rf_lex_is(kw, "instance"))
+        return read_instance(r, kw);
+    if (rf_lex_is(kw, "mesh"))
+        return read_mesh(r, kw);
     if (rf_lex_is(kw, "sphere") || rf_lex_is(kw, "plane") || rf_lex_is(kw, "triangle") ||
         rf_lex_is(kw, "polygon") || rf_lex_is(kw, "cone") || rf_lex_is(kw, "cylinder"))
         return read_primitive(r, kw);
@@ -426,6 +678,7 @@ RfStatus rf_scene_read_rf(const char *name, const char *text, size_t len, RfScen
     memset(&r, 0, sizeof r);
     r.scene = scene;
     r.material = -1;
+    r.object = -1;
     rf_scene_init(scene);
     scene->format = RF_FORMAT_RF;
     rf_lex_init(&r.lx, name, text, len, err, errsz);
@@ -439,7 +692,10 @@ RfStatus rf_scene_read_rf(const char *name, const char *text, size_t len, RfScen
         rf_lex_advance(&r.lx);
         st = read_statement(&r, &kw);
     }
+    if (!st)
+        st = resolve_refs(&r);
     free(r.vbuf);
     free(r.nbuf);
+    free(r.refs);
     return rf__reader_finish(&r.lx, scene, st);
 }

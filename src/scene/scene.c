@@ -2,6 +2,7 @@
  * (scene.h). */
 #include "refray/scene.h"
 #include "refray/numeric.h"
+#include "refray/transform.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -55,6 +56,8 @@ void rf_scene_free(RfScene *scene)
     free(scene->prims);
     free(scene->vertices);
     free(scene->normals);
+    free(scene->objects);
+    free(scene->instances);
     rf_scene_init(scene);
 }
 
@@ -136,6 +139,43 @@ RfStatus rf_scene_add_vertices(RfScene *scene, const RfVec3 *v, const RfVec3 *no
     return RF_OK;
 }
 
+RfStatus rf_scene_add_object(RfScene *scene, const char *name, RfSrcLoc loc, int *index)
+{
+    if (scene->object_count >= INT32_MAX)
+        return RF_ERR_NOMEM;
+    RfStatus st = reserve((void **)&scene->objects, &scene->object_cap, scene->object_count, 1,
+                          sizeof *scene->objects);
+    if (st)
+        return st;
+    RfSceneObject *o = &scene->objects[scene->object_count];
+    memset(o, 0, sizeof *o);
+    snprintf(o->name, sizeof o->name, "%s", name);
+    o->first = scene->prim_count;
+    o->loc = loc;
+    if (index)
+        *index = (int)scene->object_count;
+    scene->object_count++;
+    return RF_OK;
+}
+
+RfStatus rf_scene_add_instance(RfScene *scene, int object, RfMat4 m, size_t *index)
+{
+    RfInstance in;
+    RfMat3 lin_inv;
+    in.object = object;
+    in.to_world = m;
+    if (rf_mat4_inverse(m, &in.to_object) || rf_mat3_inverse(rf_mat4_linear(m), &lin_inv))
+        return RF_ERR_SINGULAR;
+    in.normal_to_world = rf_mat3_transpose(lin_inv); /* §4.9 n' = (M^-1)^T n */
+    RfStatus st = reserve((void **)&scene->instances, &scene->instance_cap, scene->instance_count,
+                          1, sizeof in);
+    if (st)
+        return st;
+    scene->instances[scene->instance_count] = in;
+    *index = scene->instance_count++;
+    return RF_OK;
+}
+
 /* ---- checks ------------------------------------------------------------------------------ */
 
 /* Twice the vector area of a polygon (the sum of the fan's cross products about v[0]; equal
@@ -157,6 +197,10 @@ RfStatus rf_scene_check_primitive(const RfScene *scene, const RfPrimitive *p, ch
                                   size_t msgsz)
 {
     const char *name = rf_prim_type_name(p->type);
+    if (p->type == RF_PRIM_INSTANCE) /* takes its materials from the object's primitives */
+        return p->u.instance < scene->instance_count
+                   ? RF_OK
+                   : msgf(msg, msgsz, RF_ERR_DOMAIN, "instance: index out of bounds");
     if (p->material < 0 || (size_t)p->material >= scene->material_count)
         return msgf(msg, msgsz, RF_ERR_DOMAIN, "%s has no valid material", name);
     switch (p->type) {
@@ -215,6 +259,7 @@ RfStatus rf_scene_check_primitive(const RfScene *scene, const RfPrimitive *p, ch
             return msgf(msg, msgsz, RF_ERR_DEGENERATE, "degenerate cone: both radii are zero");
         return RF_OK;
     }
+    case RF_PRIM_INSTANCE:
     case RF_PRIM_TYPE_COUNT:
         break;
     }
@@ -368,6 +413,8 @@ RfStatus rf_scene_validate(const RfScene *scene, const char *source, char *err, 
     for (size_t i = 0; i < scene->prim_count; i++)
         if ((st = rf_scene_check_primitive(scene, &scene->prims[i], msg, sizeof msg)))
             return located(err, errsz, source, scene->prims[i].loc, msg, st);
+    if ((st = rf_scene_graph_check(scene, &loc, msg, sizeof msg)))
+        return located(err, errsz, source, loc, msg, st);
     return RF_OK;
 }
 
@@ -442,6 +489,7 @@ const char *rf_prim_type_name(RfPrimType type)
     case RF_PRIM_TRIANGLE: return "triangle";
     case RF_PRIM_POLYGON: return "polygon";
     case RF_PRIM_CONE: return "cone";
+    case RF_PRIM_INSTANCE: return "instance";
     case RF_PRIM_TYPE_COUNT: break;
     }
     return "primitive";
@@ -475,7 +523,22 @@ int rf_scene_bounds(const RfScene *scene, RfVec3 *lo, RfVec3 *hi)
     int any = 0;
     for (size_t i = 0; i < scene->prim_count; i++) {
         const RfPrimitive *p = &scene->prims[i];
+        if (p->flags & RF_PRIM_IN_OBJECT) /* seen only through instances */
+            continue;
         switch (p->type) {
+        case RF_PRIM_INSTANCE: {
+            RfVec3 ol, oh;
+            const RfInstance *in = &scene->instances[p->u.instance];
+            if (!rf_scene_object_bounds(scene, in->object, &ol, &oh))
+                break;
+            for (int c = 0; c < 8; c++) { /* the 8 corners of the object box */
+                RfVec3 k = rf_vec3(c & 1 ? oh.x : ol.x, c & 2 ? oh.y : ol.y, c & 4 ? oh.z : ol.z);
+                if (rf_transform_point(in->to_world, k, &k) == RF_OK)
+                    grow_box(lo, hi, k, 0.0);
+            }
+            any = 1;
+            break;
+        }
         case RF_PRIM_SPHERE:
             grow_box(lo, hi, p->u.sphere.center, p->u.sphere.radius);
             any = 1;

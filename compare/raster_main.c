@@ -1,0 +1,140 @@
+/* refray-raster: the comparator's OpenGL rendering of a scene (raster.h) to a linear EXR, the
+ * counterpart of `refray render --local`. Its own binary so that refray itself needs no GL. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl_context.h"
+#include "raster.h"
+#include "refray/scene_io.h"
+#include "refray/version.h"
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: refray-raster SCENE -o OUT.exr [--depth-out DEPTH.exr] [--png OUT.png]\n"
+            "                     [--mode phong|gouraud|flat] [--width W] [--height H]\n"
+            "                     [--gamma G | --srgb] [--nff-fov centres|edges]\n"
+            "  OpenGL 4.5 core (offscreen, %s) rasterization of the scene with the tracer's --local\n"
+            "  shading: the image `refray render --local` must reproduce (docs/compare.md).\n"
+            "  -o           linear RGB OpenEXR (32-bit float)\n"
+            "  --depth-out  linear eye-space depth (distance along the view axis), +inf = background\n"
+            "  --mode       phong (per pixel, default); gouraud and flat shade polygons per vertex /\n"
+            "               per face (teaching); spheres, cones and planes are always per pixel\n"
+            "exit: 0 ok, 1 error, 2 usage\n",
+            rf_gl_context_backend());
+}
+
+static int parse_int(const char *s, int *out)
+{
+    char *end;
+    long v = strtol(s, &end, 10);
+    if (*s == 0 || *end != 0 || v < 1 || v > 65536)
+        return 0;
+    *out = (int)v;
+    return 1;
+}
+
+int main(int argc, char **argv)
+{
+    const char *scene_path = NULL, *exr = NULL, *depth_out = NULL, *png = NULL;
+    RfRasterOptions opt = {0, 0, RF_SHADE_PHONG};
+    RfLoadOptions lopt = rf_load_options_default();
+    RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8};
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int ok = 1;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            usage(stdout);
+            return 0;
+        } else if (strcmp(a, "-o") == 0 && v) {
+            exr = v, i++;
+        } else if (strcmp(a, "--depth-out") == 0 && v) {
+            depth_out = v, i++;
+        } else if (strcmp(a, "--png") == 0 && v) {
+            png = v, i++;
+        } else if (strcmp(a, "--width") == 0 && v) {
+            ok = parse_int(v, &opt.width), i++;
+        } else if (strcmp(a, "--height") == 0 && v) {
+            ok = parse_int(v, &opt.height), i++;
+        } else if (strcmp(a, "--mode") == 0 && v) {
+            i++;
+            if (strcmp(v, "phong") == 0)
+                opt.mode = RF_SHADE_PHONG;
+            else if (strcmp(v, "gouraud") == 0)
+                opt.mode = RF_SHADE_GOURAUD;
+            else if (strcmp(v, "flat") == 0)
+                opt.mode = RF_SHADE_FLAT;
+            else
+                ok = 0;
+        } else if (strcmp(a, "--gamma") == 0 && v) {
+            char *end;
+            popt.gamma = strtod(v, &end), i++;
+            ok = *end == 0 && popt.gamma > 0.0 && popt.gamma < 10.0;
+        } else if (strcmp(a, "--srgb") == 0) {
+            popt.encoding = RF_PNG_SRGB;
+        } else if (strcmp(a, "--nff-fov") == 0 && v) {
+            i++;
+            if (strcmp(v, "centres") == 0 || strcmp(v, "centers") == 0)
+                lopt.nff_fov = RF_FOV_PIXEL_CENTRES;
+            else if (strcmp(v, "edges") == 0)
+                lopt.nff_fov = RF_FOV_EDGES;
+            else
+                ok = 0;
+        } else if (a[0] != '-' && !scene_path) {
+            scene_path = a;
+        } else {
+            fprintf(stderr, "refray-raster: unknown or incomplete option '%s' (see: refray-raster --help)\n", a);
+            return 2;
+        }
+        if (!ok) {
+            fprintf(stderr, "refray-raster: bad value for %s\n", a);
+            return 2;
+        }
+    }
+    if (!scene_path || (!exr && !png && !depth_out)) {
+        usage(stderr);
+        return 2;
+    }
+    char err[1024];
+    RfScene scene;
+    rf_scene_init(&scene);
+    if (rf_scene_load(scene_path, &lopt, &scene, err, sizeof err) != RF_OK) {
+        fprintf(stderr, "%s\n", err);
+        return 1;
+    }
+    RfGlContext *ctx = NULL;
+    RfImage img, depth;
+    if (rf_gl_context_create(&ctx, err, sizeof err) != RF_OK) {
+        fprintf(stderr, "refray-raster: %s\n", err);
+        rf_scene_free(&scene);
+        return 1;
+    }
+    RfStatus st = rf_raster_render(&scene, &opt, rf_gl_context_proc, ctx, &img, depth_out ? &depth : NULL,
+                                   err, sizeof err);
+    rf_gl_context_destroy(ctx);
+    rf_scene_free(&scene);
+    if (st != RF_OK) {
+        fprintf(stderr, "refray-raster: %s: %s\n", scene_path, err);
+        return 1;
+    }
+    static const char *modes[] = {"phong", "gouraud", "flat"};
+    char settings[128];
+    snprintf(settings, sizeof settings, "%dx%d, OpenGL 4.5 core (%s), %s shading", img.width, img.height,
+             rf_gl_context_backend(), modes[opt.mode]);
+    RfImageAttr attrs[] = {{"refray:version", RF_VERSION}, {"refray:scene", scene_path},
+                           {"refray:renderer", "refray-raster"}, {"refray:settings", settings}};
+    int rc = 0;
+    if (exr && rf_exr_write(exr, &img, attrs, 4, err, sizeof err) != RF_OK)
+        rc = 1;
+    if (!rc && png && rf_png_write(png, &img, popt, err, sizeof err) != RF_OK)
+        rc = 1;
+    if (!rc && depth_out && rf_exr_write(depth_out, &depth, attrs, 4, err, sizeof err) != RF_OK)
+        rc = 1;
+    if (rc)
+        fprintf(stderr, "refray-raster: %s\n", err);
+    rf_image_free(&img);
+    if (depth_out)
+        rf_image_free(&depth);
+    return rc;
+}

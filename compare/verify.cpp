@@ -1,0 +1,1336 @@
+// refray-verify: the tracer's geometric decisions against exact arithmetic (issue 7,
+// docs/verify.md). For each ray of a class: the tracer's answer (rf_tracer_intersect: hit or
+// miss, nearest primitive, t) against the exact one (verify_oracle.cpp, CGAL Epeck); every
+// disagreement is ambiguous (within kDelta * S of a boundary) or real. Also measured: shadow
+// acne and light leaks over scene scales 1e-4 .. 1e6, the optics edge cases, and the
+// invalid-sample count of stress renders. Exit status 1 on any real disagreement.
+#include "verify.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdarg>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "refray/numeric.h"
+#include "refray/optics.h"
+#include "refray/scene_io.h"
+
+namespace rv {
+namespace {
+
+// ---- options, statistics ----------------------------------------------------------------
+
+struct Opts {
+    long rays = 100000;
+    uint64_t seed = 1;
+    bool kernel = false; // the tracer under test is the kernel loop below (planted methods)
+    RfTriangleMethod tri = RF_TRIANGLE_WATERTIGHT;
+    RfSphereMethod sph = RF_SPHERE_STABLE;
+    double fixed_offset = 0; // > 0: planted fixed epsilon instead of the offset policy
+    const char *scene = nullptr; // one scene file: the classes over it, one row each
+    long scene_rays = 0;         // rays per class in the aggregated rows of --stress scenes
+};
+
+// Plain data: children of --jobs send it back through a pipe.
+struct Stats {
+    char name[16];
+    long rays, agree, amb, real, edge_miss, skipped;
+    long acne_n, acne_d; // falsely occluded (or leaking) samples / samples
+    double secs;
+    int n_examples;
+    char examples[3][480];
+};
+
+void example(Stats &st, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void example(Stats &st, const char *fmt, ...)
+{
+    if (st.n_examples >= 3)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(st.examples[st.n_examples++], sizeof st.examples[0], fmt, ap);
+    va_end(ap);
+}
+
+// ---- random numbers (splitmix64: reproducible per seed and class) ------------------------
+
+struct Rng {
+    uint64_t s;
+    explicit Rng(uint64_t seed) : s(seed * 0x9E3779B97F4A7C15ULL + 0x1234567ULL) {}
+    uint64_t next()
+    {
+        uint64_t z = (s += 0x9E3779B97F4A7C15ULL);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+        return z ^ (z >> 31);
+    }
+    double u() { return (double)(next() >> 11) * 0x1p-53; }
+    double range(double lo, double hi) { return lo + (hi - lo) * u(); }
+    double pow10(double lo, double hi) { return std::pow(10.0, range(lo, hi)); }
+    int below(int n) { return (int)(next() % (uint64_t)n); }
+    RfVec3 unit()
+    {
+        for (;;) {
+            RfVec3 v = rf_vec3(range(-1, 1), range(-1, 1), range(-1, 1));
+            double l = rf_vec3_length(v);
+            if (l > 0.05 && l <= 1)
+                return rf_vec3_scale(v, 1 / l);
+        }
+    }
+    RfVec3 ball()
+    {
+        for (;;) {
+            RfVec3 v = rf_vec3(range(-1, 1), range(-1, 1), range(-1, 1));
+            if (rf_vec3_dot(v, v) <= 1)
+                return v;
+        }
+    }
+};
+
+// ---- scenes built in code -------------------------------------------------------------------
+
+// A closed mesh and a region certainly inside it: a ray from there must hit the mesh.
+struct Mesh {
+    bool is_box;
+    RfVec3 c;
+    double r_in;
+    RfVec3 lo, hi;
+};
+
+struct World {
+    RfScene sc;
+    int mat = 0;
+    std::vector<int> prim_mesh; // per primitive: closed mesh index or -1
+    std::vector<Mesh> meshes;
+    std::unique_ptr<Oracle> orc;
+    RfTracer *tr = nullptr;
+    RfAabb bounds;
+
+    World()
+    {
+        rf_scene_init(&sc);
+        RfMaterial m = rf_material_default();
+        m.kd = rf_rgb(0.8, 0.8, 0.8);
+        rf_scene_add_material(&sc, &m, &mat);
+        bounds = rf_aabb_empty();
+    }
+    ~World()
+    {
+        rf_tracer_free(tr);
+        rf_scene_free(&sc);
+    }
+    World(const World &) = delete;
+    World &operator=(const World &) = delete;
+
+    void add(RfPrimitive p, int mesh)
+    {
+        char msg[256];
+        p.material = mat;
+        if (rf_scene_add_primitive(&sc, &p, msg, sizeof msg) == RF_OK)
+            prim_mesh.push_back(mesh);
+    }
+    void sphere(RfVec3 c, double r, unsigned flags)
+    {
+        RfPrimitive p{};
+        p.type = RF_PRIM_SPHERE;
+        p.flags = flags;
+        p.u.sphere.center = c;
+        p.u.sphere.radius = r;
+        add(p, -1);
+        RfVec3 rr = rf_vec3(r, r, r);
+        bounds = rf_aabb_add_point(rf_aabb_add_point(bounds, rf_vec3_sub(c, rr)), rf_vec3_add(c, rr));
+    }
+    void poly(const RfVec3 *v, int n, unsigned flags, int mesh)
+    {
+        RfPrimitive p{};
+        size_t first, nfirst;
+        if (rf_scene_add_vertices(&sc, v, nullptr, n, &first, &nfirst) != RF_OK)
+            return;
+        p.type = n == 3 ? RF_PRIM_TRIANGLE : RF_PRIM_POLYGON;
+        p.flags = flags;
+        p.u.poly.first = first;
+        p.u.poly.nfirst = nfirst;
+        p.u.poly.count = n;
+        add(p, mesh);
+        for (int i = 0; i < n; i++)
+            bounds = rf_aabb_add_point(bounds, v[i]);
+    }
+    void plane(RfVec3 n, double offset)
+    {
+        RfPrimitive p{};
+        p.type = RF_PRIM_PLANE;
+        p.flags = RF_PRIM_TWO_SIDED;
+        p.u.plane.normal = n;
+        p.u.plane.offset = offset;
+        add(p, -1);
+    }
+    // The icosahedron subdivided `level` times, vertices on radius r (times 1 + jitter*U(-1,1)):
+    // closed, two-sided triangles sharing their vertices' doubles exactly.
+    void icosphere(RfVec3 c, double r, int level, double jitter, Rng &rng)
+    {
+        const double g = (1 + std::sqrt(5.0)) / 2;
+        std::vector<RfVec3> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                                 {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+        std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11},
+                                             {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                             {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9},
+                                             {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+        for (int l = 0; l < level; l++) {
+            std::map<std::pair<int, int>, int> mid;
+            auto midpoint = [&](int a, int b) {
+                auto key = std::make_pair(std::min(a, b), std::max(a, b));
+                auto it = mid.find(key);
+                if (it != mid.end())
+                    return it->second;
+                v.push_back(rf_vec3_scale(rf_vec3_add(v[(size_t)a], v[(size_t)b]), 0.5));
+                return mid[key] = (int)v.size() - 1;
+            };
+            std::vector<std::array<int, 3>> nf;
+            for (auto &t : f) {
+                int a = midpoint(t[0], t[1]), b = midpoint(t[1], t[2]), cc = midpoint(t[2], t[0]);
+                nf.push_back({t[0], a, cc});
+                nf.push_back({t[1], b, a});
+                nf.push_back({t[2], cc, b});
+                nf.push_back({a, b, cc});
+            }
+            f.swap(nf);
+        }
+        for (auto &p : v)
+            p = rf_vec3_add(c, rf_vec3_scale(rf_vec3_normalize(p), r * (1 + jitter * rng.range(-1, 1))));
+        int id = (int)meshes.size();
+        meshes.push_back(Mesh{false, c, 0.3 * r, {}, {}});
+        for (auto &t : f) {
+            RfVec3 tri[3] = {v[(size_t)t[0]], v[(size_t)t[1]], v[(size_t)t[2]]};
+            poly(tri, 3, RF_PRIM_TWO_SIDED, id);
+        }
+    }
+    // The box [0, n h]^3 + corner, each face an n x n grid of squares split into two triangles
+    // along alternating diagonals. With h a power of two and a dyadic corner every vertex and
+    // every edge point k/2^10 of the way is exact, so rays can pass exactly through them.
+    void grid_cube(RfVec3 corner, int n, double h)
+    {
+        int id = (int)meshes.size();
+        RfVec3 hi = rf_vec3_add(corner, rf_vec3(n * h, n * h, n * h));
+        RfVec3 m = rf_vec3(n * h * 0.2, n * h * 0.2, n * h * 0.2);
+        meshes.push_back(Mesh{true, {}, 0, rf_vec3_add(corner, m), rf_vec3_sub(hi, m)});
+        for (int a = 0; a < 3; a++)
+            for (int side = 0; side < 2; side++)
+                for (int i = 0; i < n; i++)
+                    for (int j = 0; j < n; j++) {
+                        auto P = [&](int ii, int jj) {
+                            double c[3];
+                            c[a] = side * n * h;
+                            c[(a + 1) % 3] = ii * h;
+                            c[(a + 2) % 3] = jj * h;
+                            return rf_vec3_add(corner, rf_vec3(c[0], c[1], c[2]));
+                        };
+                        RfVec3 p00 = P(i, j), p10 = P(i + 1, j), p11 = P(i + 1, j + 1), p01 = P(i, j + 1);
+                        if ((i + j) % 2) {
+                            RfVec3 t1[3] = {p00, p10, p11}, t2[3] = {p00, p11, p01};
+                            poly(t1, 3, RF_PRIM_TWO_SIDED, id);
+                            poly(t2, 3, RF_PRIM_TWO_SIDED, id);
+                        } else {
+                            RfVec3 t1[3] = {p00, p10, p01}, t2[3] = {p10, p11, p01};
+                            poly(t1, 3, RF_PRIM_TWO_SIDED, id);
+                            poly(t2, 3, RF_PRIM_TWO_SIDED, id);
+                        }
+                    }
+    }
+    // An exactly planar quad p0, p0+u, p0+u+v, p0+v: u, v small integers times 2^e, p0 a
+    // multiple of 2^(e-20), so every sum is exact.
+    void quad(RfVec3 p0, double s, Rng &rng, unsigned flags)
+    {
+        double q = std::ldexp(1.0, (int)std::floor(std::log2(s)) - 20);
+        p0 = rf_vec3(std::round(p0.x / q) * q, std::round(p0.y / q) * q, std::round(p0.z / q) * q);
+        double e = std::ldexp(1.0, (int)std::floor(std::log2(s)) - 3);
+        RfVec3 u, v;
+        do {
+            u = rf_vec3(rng.below(9) - 4, rng.below(9) - 4, rng.below(9) - 4);
+            v = rf_vec3(rng.below(9) - 4, rng.below(9) - 4, rng.below(9) - 4);
+        } while (rf_vec3_length(rf_vec3_cross(u, v)) < 4);
+        u = rf_vec3_scale(u, e);
+        v = rf_vec3_scale(v, e);
+        RfVec3 pts[4] = {p0, rf_vec3_add(p0, u), rf_vec3_add(rf_vec3_add(p0, u), v), rf_vec3_add(p0, v)};
+        poly(pts, 4, flags, -1);
+    }
+    // Spheres, a closed jittered icosphere, quads, loose triangles and a plane, all scaled by s
+    // around `at` (the uniform, far and surface classes).
+    void mixed(RfVec3 at, double s, Rng &rng)
+    {
+        icosphere(at, 0.6 * s, 2, 1e-3, rng);
+        for (int i = 0; i < 8; i++)
+            sphere(rf_vec3_add(at, rf_vec3_scale(rng.ball(), 1.5 * s)), s * rng.range(0.05, 0.4),
+                   i % 2 ? RF_PRIM_TWO_SIDED : 0);
+        for (int i = 0; i < 4; i++)
+            quad(rf_vec3_add(at, rf_vec3_scale(rng.ball(), 1.5 * s)), s, rng, RF_PRIM_TWO_SIDED);
+        for (int i = 0; i < 4; i++) {
+            RfVec3 c = rf_vec3_add(at, rf_vec3_scale(rng.ball(), 1.5 * s));
+            RfVec3 t[3];
+            for (auto &p : t)
+                p = rf_vec3_add(c, rf_vec3_scale(rng.ball(), 0.5 * s));
+            poly(t, 3, i % 2 ? RF_PRIM_TWO_SIDED : 0, -1);
+        }
+        RfVec3 n = rng.unit();
+        plane(n, rf_vec3_dot(n, at) - 1.8 * s);
+    }
+    void finish()
+    {
+        orc.reset(new Oracle(&sc));
+        if (rf_tracer_create(&sc, &tr) != RF_OK) {
+            fprintf(stderr, "refray-verify: rf_tracer_create failed\n");
+            exit(2);
+        }
+    }
+    int interior_mesh(RfVec3 o) const
+    {
+        for (size_t i = 0; i < meshes.size(); i++) {
+            const Mesh &m = meshes[i];
+            if (m.is_box ? (o.x > m.lo.x && o.y > m.lo.y && o.z > m.lo.z && o.x < m.hi.x && o.y < m.hi.y && o.z < m.hi.z)
+                         : rf_vec3_length(rf_vec3_sub(o, m.c)) < m.r_in)
+                return (int)i;
+        }
+        return -1;
+    }
+};
+
+// ---- the tracer under test ----------------------------------------------------------------
+
+struct TraceAns {
+    int prim;
+    double t;
+};
+
+// The library's tracer (rf_tracer_intersect), or with --triangle/--sphere the same nearest-hit
+// loop over the §3.5 kernels with the chosen methods (the planted-bug mode).
+TraceAns tracer_query(const World &w, const Opts &o, RfRay r, double t_max)
+{
+    if (!o.kernel) {
+        RfSurfaceHit h;
+        int p = rf_tracer_intersect(w.tr, r, 0.0, t_max, &h);
+        return {p, p >= 0 ? h.t : NAN};
+    }
+    std::vector<int> cand;
+    w.orc->candidates(r, cand);
+    TraceAns best{-1, NAN};
+    for (int i : cand) {
+        const Item &it = w.orc->items()[(size_t)i];
+        RfHit h;
+        int ok = 0;
+        double t_min = 0.0;
+    again:
+        if (it.kind == ITEM_TRI)
+            ok = rf_intersect_triangle(r, RfTriangle{it.p[0], it.p[1], it.p[2]}, o.tri, t_min, t_max, &h);
+        else if (it.kind == ITEM_SPHERE)
+            ok = rf_intersect_sphere(r, it.s, o.sph, t_min, t_max, &h);
+        else if (it.kind == ITEM_PLANE)
+            ok = rf_intersect_plane(r, it.pl, t_min, t_max, &h);
+        if (!ok)
+            continue;
+        if (!(it.flags & RF_PRIM_TWO_SIDED)) {
+            int front = rf_vec3_dot(r.dir, h.normal) < 0.0;
+            if (front == !!(it.flags & RF_PRIM_INSIDE)) {
+                // the hidden side of a sphere: its far root may face the ray (tracer.c hit_item)
+                if (it.kind == ITEM_SPHERE) {
+                    t_min = std::nextafter(h.t, HUGE_VAL);
+                    goto again;
+                }
+                continue;
+            }
+        }
+        t_max = h.t;
+        best = {it.prim, h.t};
+    }
+    return best;
+}
+
+// ---- margins to the boundaries (long double, for the classification only) -----------------
+
+typedef long double L;
+struct LV {
+    L x, y, z;
+};
+LV lv(RfVec3 v) { return {v.x, v.y, v.z}; }
+LV sub(LV a, LV b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+L dot(LV a, LV b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+LV cross(LV a, LV b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+L len(LV a) { return std::sqrt(dot(a, a)); }
+
+struct Margin {
+    L m, S; // the configuration is ambiguous when m <= kDelta * S
+    bool near() const { return !(m > (L)kDelta * S); }
+};
+
+// How far the ray is from changing its answer for this item: triangles: the distance from the
+// ray's line to each edge line (the perpendicular shift that puts the ray on the edge) and from
+// the origin to the plane (t = 0); spheres: | |v| - r | (tangency) and | |f| - r | (origin on
+// the sphere); planes: the origin's distance and the ray's tilt out of the plane.
+Margin margin(const Item &it, RfRay r)
+{
+    LV o = lv(r.origin), d = lv(r.dir);
+    L dl = len(d);
+    switch (it.kind) {
+    case ITEM_TRI: {
+        LV p[3] = {lv(it.p[0]), lv(it.p[1]), lv(it.p[2])};
+        L S = 0, m = HUGE_VALL;
+        for (int k = 0; k < 3; k++) {
+            S = std::max(S, len(sub(p[k], o)));
+            LV a = p[k], e = sub(p[(k + 1) % 3], p[k]), w = sub(a, o), c = cross(d, e);
+            L cl = len(c);
+            m = std::min(m, cl > 0 ? std::fabs(dot(w, c)) / cl : len(cross(w, d)) / dl);
+        }
+        LV n = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+        L nl = len(n);
+        if (nl > 0)
+            m = std::min(m, std::fabs(dot(n, sub(p[0], o))) / nl);
+        return {m, S};
+    }
+    case ITEM_SPHERE: {
+        LV f = sub(o, lv(it.s.center));
+        L r = it.s.radius, fl = len(f), vl = len(cross(f, d)) / dl;
+        return {std::min(std::fabs(vl - r), std::fabs(fl - r)), fl + r};
+    }
+    case ITEM_PLANE: {
+        LV n = lv(it.pl.normal);
+        L nl = len(n), S = std::max(len(o), std::fabs((L)it.pl.offset)) + 1e-300L;
+        L m = std::fabs(dot(n, o) - it.pl.offset) / nl, cosv = std::fabs(dot(n, d)) / (nl * dl);
+        return {std::min(m, cosv * S), S};
+    }
+    default:
+        return {0, 1};
+    }
+}
+
+// |cos| of the angle between the ray and the surface normal at parameter t.
+L cos_at(const Item &it, RfRay r, L t)
+{
+    LV d = lv(r.dir);
+    L dl = len(d);
+    if (it.kind == ITEM_TRI) {
+        LV n = cross(sub(lv(it.p[1]), lv(it.p[0])), sub(lv(it.p[2]), lv(it.p[0])));
+        return std::fabs(dot(n, d)) / (len(n) * dl);
+    }
+    if (it.kind == ITEM_SPHERE) {
+        LV q = sub(lv(r.origin), lv(it.s.center));
+        q = {q.x + t * d.x, q.y + t * d.y, q.z + t * d.z};
+        return std::fabs(dot(q, d)) / (it.s.radius * dl);
+    }
+    if (it.kind == ITEM_PLANE) {
+        LV n = lv(it.pl.normal);
+        return std::fabs(dot(n, d)) / (len(n) * dl);
+    }
+    return 1;
+}
+
+// The tolerance on t (units of |dir|) for an item hit near t: kDelta S / cos, with S grown to
+// the hit's distance t |dir| (a plane's t = num / <d,n> has the relative error eps / cos of
+// its denominator, i.e. an error in position of eps t |d| / cos).
+L t_band(const Item &it, RfRay r, L t)
+{
+    Margin m = margin(it, r);
+    L dl = len(lv(r.dir)), c = std::max(cos_at(it, r, t), (L)1e-300);
+    return (L)kDelta * std::max(m.S, std::fabs(t) * dl) / (c * dl);
+}
+
+// ---- one ray: tracer against the exact answer ----------------------------------------------
+
+enum Verdict { AGREE, AMBIG, REAL, SKIP };
+
+struct Check {
+    Verdict v;
+    bool edge_miss;
+    TraceAns t;
+    ExactHit e;
+};
+
+Check check_ray(const World &w, const Opts &o, RfRay r, int interior)
+{
+    Check c{AGREE, false, tracer_query(w, o, r, HUGE_VAL), {}};
+    const Oracle &orc = *w.orc;
+    // the tolerance for the tracer's t on its own primitive
+    L tol = -1;
+    if (c.t.prim >= 0)
+        for (int i : orc.items_of(c.t.prim))
+            tol = std::max(tol, t_band(orc.items()[(size_t)i], r, c.t.t));
+    c.e = orc.nearest(r, c.t.t, (double)tol);
+    const ExactHit &e = c.e;
+    if (e.inconsistent) {
+        c.v = REAL;
+        return c;
+    }
+    if (e.skipped) {
+        c.v = SKIP;
+        return c;
+    }
+    bool t_hit = c.t.prim >= 0;
+    if (!t_hit && !e.hit)
+        return c;
+    bool same = false;
+    for (int i : e.items)
+        same |= t_hit && orc.items()[(size_t)i].prim == c.t.prim;
+    bool amb = e.coplanar;
+    for (int i : e.items)
+        amb |= margin(orc.items()[(size_t)i], r).near();
+    if (t_hit)
+        for (int i : orc.items_of(c.t.prim))
+            amb |= margin(orc.items()[(size_t)i], r).near();
+    if (same) {
+        if (e.t_ok)
+            return c;
+        c.v = amb ? AMBIG : REAL; // right primitive, t outside the bound (or the other root)
+        return c;
+    }
+    bool tie = false;
+    if (t_hit && e.hit) {
+        L band = 0;
+        for (int i : e.items)
+            band = std::max(band, t_band(orc.items()[(size_t)i], r, e.t));
+        band = std::max(band, tol);
+        tie = std::fabs((L)c.t.t - e.t) <= band;
+        amb |= tie;
+    }
+    // A ray from inside a closed mesh whose exact first hit is on the mesh must not get out:
+    // a tracer miss, or a hit beyond the mesh, is real whatever the margins (watertightness).
+    int em = e.hit ? w.prim_mesh[(size_t)orc.items()[(size_t)e.items[0]].prim] : -1;
+    if (interior >= 0 && em == interior && (!t_hit || (!tie && c.t.t > e.t))) {
+        c.v = REAL;
+        c.edge_miss = amb;
+        return c;
+    }
+    c.v = amb ? AMBIG : REAL;
+    return c;
+}
+
+void tally(Stats &st, const World &w, RfRay r, const Check &c)
+{
+    st.rays++;
+    switch (c.v) {
+    case AGREE: st.agree++; break;
+    case AMBIG: st.amb++; break;
+    case SKIP: st.skipped++; break;
+    case REAL:
+        st.real++;
+        if (c.edge_miss)
+            st.edge_miss++;
+        example(st, "o=(%a,%a,%a) d=(%a,%a,%a): tracer prim %d t=%.17g, exact prim %d t=%.17Lg%s%s",
+                r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z, c.t.prim, c.t.t,
+                c.e.hit ? w.orc->items()[(size_t)c.e.items[0]].prim : -1, c.e.t,
+                c.edge_miss ? " (through an edge of a closed mesh)" : "",
+                c.e.inconsistent ? " (CGAL sphere test disagrees with the exact roots)" : "");
+        break;
+    }
+}
+
+// ---- ray generators on a world -----------------------------------------------------------
+
+RfVec3 box_point(const RfAabb &b, double grow, Rng &rng)
+{
+    RfVec3 c = rf_aabb_center(b), h = rf_vec3_scale(rf_vec3_sub(b.hi, b.lo), 0.5 * grow);
+    return rf_vec3(c.x + h.x * rng.range(-1, 1), c.y + h.y * rng.range(-1, 1), c.z + h.z * rng.range(-1, 1));
+}
+
+RfRay gen_uniform(const World &w, Rng &rng) { return rf_ray(box_point(w.bounds, 1.4, rng), rng.unit()); }
+
+// Aimed at a vertex (exactly) or an edge point of a random triangle, from inside a closed mesh
+// when there is one (a dyadic origin in a grid cube: the direction is then exact and the ray
+// passes exactly through the edge or vertex), else from anywhere around.
+RfRay gen_edges(const World &w, Rng &rng, int *interior)
+{
+    const auto &items = w.orc->items();
+    std::vector<int> tris;
+    for (size_t i = 0; i < items.size(); i++)
+        if (items[i].kind == ITEM_TRI)
+            tris.push_back((int)i);
+    *interior = -1;
+    if (tris.empty())
+        return gen_uniform(w, rng);
+    const Item &t = items[(size_t)tris[(size_t)rng.below((int)tris.size())]];
+    int k = rng.below(3);
+    RfVec3 a = t.p[k], b = t.p[(k + 1) % 3], target = a;
+    int kind = rng.below(3);
+    RfVec3 o;
+    int mi = w.prim_mesh[(size_t)t.prim];
+    if (mi >= 0 && w.meshes[(size_t)mi].is_box) {
+        const Mesh &m = w.meshes[(size_t)mi];
+        double q = std::ldexp(1.0, (int)std::floor(std::log2(m.hi.x - m.lo.x)) - 24); // dyadic grid
+        RfVec3 p = rf_vec3(rng.range(m.lo.x, m.hi.x), rng.range(m.lo.y, m.hi.y), rng.range(m.lo.z, m.hi.z));
+        o = rf_vec3(std::round(p.x / q) * q, std::round(p.y / q) * q, std::round(p.z / q) * q);
+        if (kind > 0) // a dyadic point of the edge: exact
+            target = rf_vec3_add(a, rf_vec3_scale(rf_vec3_sub(b, a), (double)rng.below(1024) / 1024));
+    } else {
+        if (mi >= 0)
+            o = rf_vec3_add(w.meshes[(size_t)mi].c, rf_vec3_scale(rng.ball(), 0.99 * w.meshes[(size_t)mi].r_in));
+        else
+            o = box_point(w.bounds, 1.4, rng);
+        if (kind == 1)
+            target = rf_vec3_scale(rf_vec3_add(a, b), 0.5);
+        else if (kind == 2)
+            target = rf_vec3_lerp(a, b, rng.u());
+    }
+    *interior = w.interior_mesh(o);
+    return rf_ray(o, rf_vec3_sub(target, o));
+}
+
+// Tangent to a random sphere, the line's distance from the centre r (1 + eps) with eps 0 or
+// +-10^U(-16, -2).
+bool gen_grazing(const World &w, Rng &rng, RfRay *out)
+{
+    const auto &items = w.orc->items();
+    std::vector<int> sp;
+    for (size_t i = 0; i < items.size(); i++)
+        if (items[i].kind == ITEM_SPHERE)
+            sp.push_back((int)i);
+    if (sp.empty())
+        return false;
+    const RfSphere &s = items[(size_t)sp[(size_t)rng.below((int)sp.size())]].s;
+    double eps = rng.below(4) == 0 ? 0 : (rng.below(2) ? 1 : -1) * rng.pow10(-16, -2);
+    double rho = s.radius * (1 + eps), L0 = s.radius * rng.pow10(0.05, 3);
+    RfVec3 wdir = rng.unit(), o = rf_vec3_sub(s.center, rf_vec3_scale(wdir, L0));
+    RfVec3 u = rf_vec3_normalize(rf_vec3_cross(wdir, rng.unit()));
+    // the line from o through c + u q has distance rho from c when q = rho L0 / sqrt(L0^2 - rho^2)
+    double q = rho * L0 / std::sqrt(std::max(L0 * L0 - rho * rho, 1e-300));
+    *out = rf_ray(o, rf_vec3_sub(rf_vec3_add(s.center, rf_vec3_scale(u, q)), o));
+    return true;
+}
+
+// Nearly parallel to a random triangle, polygon or plane: an in-plane direction tilted by 0 or
+// +-10^U(-17, -2), from a point at height 0 or +-10^U(-16, -1) of the size above it.
+bool gen_parallel(const World &w, Rng &rng, RfRay *out)
+{
+    const auto &items = w.orc->items();
+    std::vector<int> pl;
+    for (size_t i = 0; i < items.size(); i++)
+        if (items[i].kind == ITEM_TRI || items[i].kind == ITEM_PLANE)
+            pl.push_back((int)i);
+    if (pl.empty())
+        return false;
+    const Item &it = items[(size_t)pl[(size_t)rng.below((int)pl.size())]];
+    RfVec3 n, q;
+    double size;
+    if (it.kind == ITEM_TRI) {
+        n = rf_vec3_normalize(rf_vec3_cross(rf_vec3_sub(it.p[1], it.p[0]), rf_vec3_sub(it.p[2], it.p[0])));
+        double l1 = rng.u(), l2 = rng.u();
+        if (l1 + l2 > 1)
+            l1 = 1 - l1, l2 = 1 - l2;
+        q = rf_vec3_add(it.p[0], rf_vec3_add(rf_vec3_scale(rf_vec3_sub(it.p[1], it.p[0]), l1),
+                                             rf_vec3_scale(rf_vec3_sub(it.p[2], it.p[0]), l2)));
+        size = rf_vec3_length(rf_vec3_sub(it.box.hi, it.box.lo));
+    } else {
+        n = rf_vec3_normalize(it.pl.normal);
+        size = rf_vec3_length(rf_vec3_sub(w.bounds.hi, w.bounds.lo));
+        q = rf_vec3_add(rf_vec3_scale(n, it.pl.offset), rf_vec3_scale(rf_vec3_normalize(rf_vec3_cross(n, rng.unit())), size * rng.u()));
+    }
+    RfVec3 u = rf_vec3_normalize(rf_vec3_cross(n, rng.unit()));
+    double tilt = rng.below(4) == 0 ? 0 : (rng.below(2) ? 1 : -1) * rng.pow10(-17, -2);
+    double h = rng.below(4) == 0 ? 0 : (rng.below(2) ? 1 : -1) * rng.pow10(-16, -1) * size;
+    RfVec3 d = rf_vec3_add(u, rf_vec3_scale(n, tilt));
+    RfVec3 o = rf_vec3_add(rf_vec3_sub(q, rf_vec3_scale(d, size * rng.range(0.3, 2))), rf_vec3_scale(n, h));
+    *out = rf_ray(o, d);
+    return true;
+}
+
+// ---- the ray classes -----------------------------------------------------------------------
+
+const char *const kAllClasses[] = {"uniform", "edges", "grazing", "parallel", "far",     "radii",
+                                   "surface", "acne",  "leak",    "optics",   "invalid"};
+
+// Rays starting on surfaces: a primary ray's tracer hit p, then a secondary ray from
+// rf_ray_offset_origin(p, n, dir) (mirror, random outgoing or random transmitted direction),
+// checked like any other ray; in addition its origin must lie exactly on the side of its own
+// surface it leaves to (else it re-hits that surface: self-intersection, counted as acne).
+void surface_ray(const World &w, const Opts &o, Rng &rng, Stats &st)
+{
+    RfRay pr = rf_ray(box_point(w.bounds, 3.0, rng), rf_vec3(0, 0, 0));
+    pr.dir = rf_vec3_sub(box_point(w.bounds, 0.8, rng), pr.origin);
+    RfSurfaceHit h;
+    int prim = rf_tracer_intersect(w.tr, pr, 0.0, HUGE_VAL, &h);
+    if (prim < 0)
+        return;
+    RfVec3 n = h.normal, d;
+    int kind = rng.below(3);
+    RfVec3 in = rf_vec3_normalize(pr.dir);
+    if (kind == 0)
+        d = rf_vec3_sub(in, rf_vec3_scale(n, 2 * rf_vec3_dot(in, n)));
+    else {
+        d = rng.unit();
+        if ((rf_vec3_dot(d, n) > 0) != (kind == 1))
+            d = rf_vec3_neg(d);
+    }
+    if (rf_vec3_dot(d, n) == 0)
+        return;
+    RfRay r = rf_ray(rf_ray_offset_origin(h.point, n, d, o.fixed_offset), d);
+    Check c = check_ray(w, o, r, w.interior_mesh(r.origin));
+    tally(st, w, r, c);
+    // the exact side of the new origin against the primitive it leaves (its fan triangles are
+    // coplanar for the quads built here; a sphere's side is exact too)
+    if (w.orc->items_of(prim).empty()) // a primitive of an instanced object
+        return;
+    const Item &it = w.orc->items()[(size_t)w.orc->items_of(prim)[0]];
+    if (it.kind == ITEM_UNSUPPORTED) // a cone, non-convex polygon or instance: no exact side
+        return;
+    int want;
+    if (it.kind == ITEM_SPHERE)
+        want = rf_vec3_dot(d, rf_vec3_sub(h.point, it.s.center)) > 0 ? 1 : -1;
+    else {
+        RfVec3 nn = rf_vec3_cross(rf_vec3_sub(it.p[1], it.p[0]), rf_vec3_sub(it.p[2], it.p[0]));
+        if (it.kind == ITEM_PLANE)
+            nn = it.pl.normal;
+        want = rf_vec3_dot(d, nn) > 0 ? 1 : -1;
+    }
+    st.acne_d++;
+    if (w.orc->side(w.orc->items_of(prim)[0], r.origin) != want) {
+        st.acne_n++;
+        st.real++; // a self-intersection is a real error whatever the ray check said
+        example(st, "self-intersection: origin (%a,%a,%a) on the wrong side of primitive %d", r.origin.x,
+                r.origin.y, r.origin.z, prim);
+    }
+}
+
+void run_rays(const char *cls, const Opts &o, Stats &st)
+{
+    Rng rng(o.seed * 1000003ULL + (uint64_t)std::hash<std::string>()(cls));
+    const int subs = 16;
+    for (int sub = 0; sub < subs; sub++) {
+        long n = o.rays / subs + (sub < o.rays % subs ? 1 : 0);
+        World w;
+        std::string c = cls;
+        double s = 1;
+        RfVec3 at = rf_vec3(0, 0, 0);
+        if (c == "uniform") {
+            w.mixed(at, 1, rng);
+        } else if (c == "edges") {
+            if (sub % 2)
+                w.icosphere(rng.ball(), rng.pow10(-1, 1), 3, 1e-2, rng);
+            else
+                w.grid_cube(rf_vec3(std::ldexp((double)rng.below(1 << 20), -16), 0.25, -3), 4 + rng.below(4),
+                            std::ldexp(1.0, rng.below(6) - 3));
+        } else if (c == "grazing") {
+            for (int i = 0; i < 6; i++) {
+                double r = rng.pow10(-3, 3);
+                w.sphere(rf_vec3_scale(rng.unit(), r * rng.range(0, 40)), r, i % 2 ? RF_PRIM_TWO_SIDED : 0);
+            }
+        } else if (c == "parallel") {
+            for (int i = 0; i < 3; i++)
+                w.quad(rf_vec3_scale(rng.ball(), 2), 1, rng, RF_PRIM_TWO_SIDED);
+            for (int i = 0; i < 3; i++) {
+                RfVec3 cc = rf_vec3_scale(rng.ball(), 2), t[3];
+                for (auto &p : t)
+                    p = rf_vec3_add(cc, rng.ball());
+                w.poly(t, 3, RF_PRIM_TWO_SIDED, -1);
+            }
+            RfVec3 nn = rng.unit();
+            w.plane(nn, -3);
+        } else if (c == "far") {
+            at = rf_vec3_scale(rng.unit(), std::pow(10.0, 7.0 * sub / (subs - 1)));
+            w.mixed(at, 1, rng);
+        } else if (c == "radii") {
+            s = std::pow(10.0, -6 + 12.0 * sub / (subs - 1));
+            at = rf_vec3_scale(rng.unit(), std::max(rng.pow10(0, 7), 2 * s * rng.u()));
+            if (sub % 2)
+                w.sphere(at, s, sub % 4 == 1 ? RF_PRIM_TWO_SIDED : 0);
+            else
+                w.icosphere(at, s, 1, 1e-3, rng);
+        } else if (c == "surface") {
+            s = std::pow(10.0, -4 + 10.0 * sub / (subs - 1));
+            at = rf_vec3_scale(rng.unit(), 3 * s * rng.u());
+            w.mixed(at, s, rng);
+        }
+        w.finish();
+        if (c == "surface") { // until n secondary rays (a primary ray may miss)
+            long before = st.rays;
+            for (long a = 0; st.rays - before < n && a < 50 * n + 100; a++)
+                surface_ray(w, o, rng, st);
+            continue;
+        }
+        for (long k = 0; k < n; k++) {
+            RfRay r;
+            int interior = -1;
+            if (c == "uniform" || c == "far") {
+                r = gen_uniform(w, rng);
+                interior = w.interior_mesh(r.origin);
+            } else if (c == "edges") {
+                r = gen_edges(w, rng, &interior);
+            } else if (c == "grazing") {
+                if (!gen_grazing(w, rng, &r))
+                    continue;
+            } else if (c == "parallel") {
+                if (!gen_parallel(w, rng, &r))
+                    continue;
+            } else if (c == "radii") {
+                r.origin = rng.ball();
+                r.dir = rf_vec3_sub(rf_vec3_add(at, rf_vec3_scale(rng.ball(), 1.3 * s)), r.origin);
+                interior = w.interior_mesh(r.origin);
+            }
+            if (rf_vec3_dot(r.dir, r.dir) == 0)
+                continue;
+            tally(st, w, r, check_ray(w, o, r, interior));
+        }
+    }
+}
+
+// The classes on a scene file: the same generators over its primitives.
+void run_file(const char *cls, const Opts &o, World &w, Stats &st)
+{
+    Rng rng(o.seed * 1000003ULL + (uint64_t)std::hash<std::string>()(cls));
+    std::string c = cls;
+    for (long k = 0; k < o.rays; k++) {
+        RfRay r;
+        int interior = -1;
+        if (c == "uniform" || c == "far" || c == "radii") {
+            r = gen_uniform(w, rng);
+        } else if (c == "edges") {
+            r = gen_edges(w, rng, &interior);
+        } else if (c == "grazing") {
+            if (!gen_grazing(w, rng, &r))
+                return;
+        } else if (c == "parallel") {
+            if (!gen_parallel(w, rng, &r))
+                return;
+        } else {
+            surface_ray(w, o, rng, st);
+            continue;
+        }
+        if (rf_vec3_dot(r.dir, r.dir) > 0)
+            tally(st, w, r, check_ray(w, o, r, interior));
+    }
+}
+
+// ---- acne and leaks over scene scales 1e-4 .. 1e6 ------------------------------------------
+
+// Acne: one convex object (a sphere of radius s, or an exactly convex grid cube of size ~s) at
+// 10 s from the origin; a sample is the tracer's hit point p of a camera ray, a point light L
+// is placed at elevation 10^U(-4, 0.18) rad above the surface there, and the sample counts
+// when the light is exactly visible from the true surface point (cube: L strictly on the
+// outer side of the hit triangle's plane, CGAL orientation; sphere: <L-c, p-c> > r^2 (1 +
+// 1e-6), far beyond p's rounding). The tracer's shadow ray from rf_ray_offset_origin(p, n, l)
+// must then reach the light: any hit is a false self-shadow.
+void run_acne(const Opts &o, Stats &st)
+{
+    Rng rng(o.seed * 7919 + 11);
+    for (int k = -4; k <= 6; k++)
+        for (int obj = 0; obj < 2; obj++) {
+            double s = std::pow(10.0, k);
+            int idx = 2 * (k + 4) + obj;
+            long n = o.rays / 22 + (idx < o.rays % 22 ? 1 : 0), before = st.rays;
+            World w;
+            RfVec3 c = rf_vec3_scale(rng.unit(), 10 * s);
+            if (obj == 0) {
+                w.sphere(c, s, RF_PRIM_TWO_SIDED);
+            } else {
+                double h = std::ldexp(1.0, (int)std::floor(std::log2(s)) - 1);
+                RfVec3 corner = rf_vec3(std::round(c.x / h) * h, std::round(c.y / h) * h, std::round(c.z / h) * h);
+                w.grid_cube(corner, 3, h);
+                c = rf_vec3_add(corner, rf_vec3(1.5 * h, 1.5 * h, 1.5 * h));
+            }
+            w.finish();
+            double size = obj == 0 ? s : 3 * std::ldexp(1.0, (int)std::floor(std::log2(s)) - 1);
+            for (long a = 0; st.rays - before < n && a < 50 * n + 100; a++) { // n counted samples
+                RfVec3 eye = rf_vec3_add(c, rf_vec3_scale(rng.unit(), 4 * size));
+                RfRay pr = rf_ray(eye, rf_vec3_sub(rf_vec3_add(c, rf_vec3_scale(rng.ball(), size)), eye));
+                RfSurfaceHit h;
+                int prim = rf_tracer_intersect(w.tr, pr, 0.0, HUGE_VAL, &h);
+                if (prim < 0)
+                    continue;
+                RfVec3 n = h.normal;
+                RfVec3 t1 = rf_vec3_normalize(rf_vec3_cross(n, rng.unit())), t2 = rf_vec3_cross(n, t1);
+                double el = rng.pow10(-4, 0.18), az = rng.range(0, 2 * RF_PI);
+                RfVec3 dir = rf_vec3_add(rf_vec3_scale(n, std::sin(el)),
+                                         rf_vec3_scale(rf_vec3_add(rf_vec3_scale(t1, std::cos(az)), rf_vec3_scale(t2, std::sin(az))), std::cos(el)));
+                RfVec3 Lp = rf_vec3_add(h.point, rf_vec3_scale(dir, size * rng.pow10(0, 2)));
+                bool visible;
+                if (obj == 0) {
+                    LV lc = sub(lv(Lp), lv(c)), pc = sub(lv(h.point), lv(c));
+                    visible = dot(lc, pc) > (L)s * s * (1 + 1e-6L);
+                } else {
+                    int item = w.orc->items_of(prim)[0];
+                    int se = w.orc->side(item, eye), sl = w.orc->side(item, Lp);
+                    visible = se != 0 && se == sl;
+                }
+                RfVec3 l = rf_vec3_normalize(rf_vec3_sub(Lp, h.point));
+                if (!visible || rf_vec3_dot(n, l) <= 0)
+                    continue;
+                RfRay sr = rf_ray(rf_ray_offset_origin(h.point, n, l, o.fixed_offset), l);
+                double dist = rf_vec3_length(rf_vec3_sub(Lp, sr.origin));
+                RfSurfaceHit sh;
+                st.rays++;
+                st.acne_d++;
+                if (rf_tracer_intersect(w.tr, sr, 0.0, dist, &sh) >= 0) {
+                    st.acne_n++;
+                    st.real++;
+                    example(st, "scale 1e%d %s: shadow ray from (%a,%a,%a) dir (%a,%a,%a) hits prim %d at t=%g",
+                            k, obj ? "cube" : "sphere", sr.origin.x, sr.origin.y, sr.origin.z, l.x, l.y, l.z,
+                            sh.prim, sh.t);
+                } else {
+                    st.agree++;
+                }
+            }
+        }
+}
+
+// Leaks: a floor square and a plate 1e-3 s above it (both exactly planar, translated to 10 s);
+// exact floor points under the plate, a light above such that the segment to it crosses the
+// plate (CGAL: exactly occluded); the tracer's shadow ray from the offset origin must be
+// blocked. An offset larger than the gap starts above the plate: a light leak.
+void run_leak(const Opts &o, Stats &st)
+{
+    Rng rng(o.seed * 104729 + 5);
+    for (int k = -4; k <= 6; k++) {
+        double s = std::pow(10.0, k), z0 = 10 * s, hgt = 1e-3 * s;
+        World w;
+        RfVec3 fl[4] = {{-s, -s, z0}, {s, -s, z0}, {s, s, z0}, {-s, s, z0}};
+        RfVec3 pl[4] = {{-s / 2, -s / 2, z0 + hgt}, {s / 2, -s / 2, z0 + hgt}, {s / 2, s / 2, z0 + hgt}, {-s / 2, s / 2, z0 + hgt}};
+        w.poly(fl, 4, RF_PRIM_TWO_SIDED, -1);
+        w.poly(pl, 4, RF_PRIM_TWO_SIDED, -1);
+        w.finish();
+        long n = o.rays / 11 + (k + 4 < o.rays % 11 ? 1 : 0), before = st.rays;
+        for (long a = 0; st.rays - before < n && a < 50 * n + 100; a++) {
+            RfVec3 p = rf_vec3(s * rng.range(-0.3, 0.3), s * rng.range(-0.3, 0.3), z0);
+            RfVec3 Lp = rf_vec3(p.x + s * rng.range(-0.1, 0.1), p.y + s * rng.range(-0.1, 0.1), z0 + s * rng.range(0.5, 2));
+            bool occluded = false;
+            for (int item : w.orc->items_of(1))
+                occluded |= w.orc->segment_hits(item, p, Lp);
+            if (!occluded)
+                continue;
+            RfVec3 l = rf_vec3_normalize(rf_vec3_sub(Lp, p));
+            RfRay sr = rf_ray(rf_ray_offset_origin(p, rf_vec3(0, 0, 1), l, o.fixed_offset), l);
+            RfSurfaceHit sh;
+            st.rays++;
+            st.acne_d++;
+            if (rf_tracer_intersect(w.tr, sr, 0.0, rf_vec3_length(rf_vec3_sub(Lp, sr.origin)), &sh) < 0) {
+                st.acne_n++;
+                st.real++;
+                example(st, "scale 1e%d: light leaks past the plate from (%a,%a,%a)", k, sr.origin.x, sr.origin.y,
+                        sr.origin.z);
+            } else {
+                st.agree++;
+            }
+        }
+    }
+}
+
+// ---- optics: Snell, refraction and Fresnel at the edge cases --------------------------------
+
+void run_optics(const Opts &, Stats &st)
+{
+    struct Pair {
+        double ei, et;
+    } pairs[] = {{1.5, 1.0}, {1.0, 1.5}, {1.33, 1.0}, {2.4, 1.0}, {1.5, 1.33}};
+    for (const Pair &pp : pairs) {
+        std::vector<double> th;
+        double crit = pp.ei > pp.et ? std::asin(pp.et / pp.ei) : NAN;
+        for (int i = 0; i <= 2000; i++)
+            th.push_back(RF_PI / 2 * i / 2000);
+        th.push_back(std::nextafter(RF_PI / 2, 0));
+        if (!std::isnan(crit)) {
+            for (double dlt : {0.0, 1e-15, 1e-12, 1e-9, 1e-6, 1e-3})
+                for (double sg : {-1.0, 1.0})
+                    th.push_back(crit + sg * dlt);
+            for (int i = -50; i <= 50; i++)
+                th.push_back(crit + i * 2e-11);
+            double lo = crit, hi = crit; // the neighbouring doubles
+            for (int i = 0; i < 5; i++) {
+                lo = std::nextafter(lo, 0.0);
+                hi = std::nextafter(hi, 2.0);
+                th.push_back(lo);
+                th.push_back(hi);
+            }
+        }
+        std::sort(th.begin(), th.end());
+        double prev_r = -1, prev_th = -1;
+        for (double t : th) {
+            st.rays++;
+            bool bad = false;
+            const char *why = "";
+            double ci = std::cos(t), si = std::sin(t);
+            RfVec3 i = rf_vec3(si, 0, ci), n = rf_vec3(0, 0, 1);
+            RfFresnel fe = rf_fresnel(pp.ei, pp.et, ci, RF_FRESNEL_EXACT);
+            RfFresnel fs = rf_fresnel(pp.ei, pp.et, ci, RF_FRESNEL_SCHLICK);
+            RfSnell sn = rf_snell(pp.ei, pp.et, t);
+            RfVec3 tv = rf_vec3(NAN, NAN, NAN);
+            int refr = rf_refract(i, n, pp.ei, pp.et, &tv);
+            L s2 = (L)pp.ei / pp.et * ((L)pp.ei / pp.et) * (L)si * si; // sin^2 theta_t
+            if (!std::isfinite(fe.r) || !std::isfinite(fe.t) || !std::isfinite(fs.r) || !std::isfinite(fs.t) ||
+                fe.r < 0 || fe.r > 1 || fs.r < 0 || fs.r > 1)
+                bad = true, why = "Fresnel not finite or outside [0, 1]";
+            else if (std::fabs(fe.r + fe.t - 1) > 1e-12 || std::fabs(fs.r + fs.t - 1) > 1e-12)
+                bad = true, why = "R + T != 1";
+            else if (s2 > 1 + 2e-14L && (refr || fe.r != 1 || !fe.tir || !sn.tir || fs.r != 1))
+                bad = true, why = "beyond the critical angle without total internal reflection";
+            else if (s2 < 1 - 2e-14L) {
+                if (!refr || fe.tir || sn.tir || fe.r >= 1)
+                    bad = true, why = "total internal reflection below the critical angle";
+                else {
+                    L tl = len(lv(tv)), st_ = len(cross(lv(tv), lv(n))) / tl;
+                    if (std::fabs(tl - 1) > 1e-12L || std::fabs(pp.ei * si - pp.et * st_) > 1e-12L || tv.z > 0 ||
+                        !std::isfinite(sn.theta_t))
+                        bad = true, why = "refracted direction not unit or not satisfying Snell";
+                }
+            }
+            if (refr && !(std::isfinite(tv.x) && std::isfinite(tv.y) && std::isfinite(tv.z)))
+                bad = true, why = "refracted direction not finite";
+            // F rises monotonically through the critical angle
+            if (!std::isnan(crit) && std::fabs(t - crit) < 1e-3 && prev_th >= 0 && std::fabs(prev_th - crit) < 1e-3 &&
+                fe.r < prev_r - 1e-15)
+                bad = true, why = "Fresnel reflectance not monotone at the critical angle";
+            if (t == 0 && pp.ei == 1.0 && pp.et == 1.5 && std::fabs(fe.r - 0.04) > 1e-12)
+                bad = true, why = "F(normal incidence, 1 -> 1.5) != 0.04";
+            prev_r = fe.r;
+            prev_th = t;
+            if (bad) {
+                st.real++;
+                example(st, "eta %g -> %g, theta %.17g: %s (r = %.17g)", pp.ei, pp.et, t, why, fe.r);
+            } else {
+                st.agree++;
+            }
+        }
+        // grazing incidence exactly: cos_i = 0 reflects everything
+        st.rays++;
+        RfFresnel g = rf_fresnel(pp.ei, pp.et, 0.0, RF_FRESNEL_EXACT);
+        if (!(g.r == 1 || std::fabs(g.r - 1) < 1e-15)) {
+            st.real++;
+            example(st, "eta %g -> %g: F(cos 0) = %.17g, expected 1", pp.ei, pp.et, g.r);
+        } else {
+            st.agree++;
+        }
+    }
+}
+
+// ---- stress renders: no NaN or Inf may reach the film ---------------------------------------
+
+void run_invalid(const Opts &o, Stats &st)
+{
+    Rng rng(o.seed * 31337 + 3);
+    for (int variant = 0; variant < 6; variant++) {
+        double s = std::pow(10.0, variant < 3 ? -4 + 5 * variant : -2 + 4 * (variant - 3)); // 1e-4,1e1,1e6 / 1e-2,1e2,1e6
+        World w;
+        RfMaterial glass = rf_material_default();
+        glass.kd = rf_rgb(0.05, 0.05, 0.05);
+        glass.ks = rf_rgb(0.5, 0.5, 0.5);
+        glass.shininess = 50;
+        glass.kr = rf_rgb(1, 1, 1);
+        glass.kt = rf_rgb(1, 1, 1);
+        glass.ior = 1.5;
+        glass.flags |= RF_MAT_FRESNEL;
+        int gi;
+        rf_scene_add_material(&w.sc, &glass, &gi);
+        RfVec3 at = rf_vec3(10 * s, -3 * s, 7 * s);
+        if (variant < 3) { // a glass sphere on a floor, seen at grazing angles from just above it
+            w.mat = gi;
+            w.sphere(at, s, 0);
+            w.icosphere(rf_vec3_add(at, rf_vec3(2.2 * s, 0, 0)), s, 2, 0, rng);
+            w.mat = 0;
+            w.plane(rf_vec3(0, 0, 1), at.z - s);
+            w.sc.camera.eye = rf_vec3_add(at, rf_vec3(-6 * s, -1e-3 * s, -s + 1e-6 * s));
+        } else { // tiny far spheres of glass
+            w.mat = gi;
+            for (int i = 0; i < 40; i++)
+                w.sphere(rf_vec3_add(at, rf_vec3_scale(rng.ball(), 1e6 * s)), 1e-6 * s * rng.pow10(0, 4), 0);
+            w.mat = 0;
+            w.sc.camera.eye = rf_vec3_add(at, rf_vec3(0, 0, -2e6 * s));
+        }
+        RfLight li{};
+        li.kind = RF_LIGHT_POINT;
+        li.falloff = RF_FALLOFF_NONE;
+        li.position = rf_vec3_add(at, rf_vec3(-s, 2 * s, 5 * s));
+        li.intensity = rf_rgb(1, 1, 1);
+        rf_scene_add_light(&w.sc, &li);
+        w.sc.has_camera = 1;
+        w.sc.camera.target = at;
+        w.sc.camera.up = rf_vec3(0, 0, 1);
+        if (variant >= 3)
+            w.sc.camera.up = rf_vec3(0, 1, 0);
+        w.sc.camera.d = 1;
+        w.sc.camera.fov = variant < 3 ? 40 : 60;
+        w.sc.camera.fov_reading = RF_FOV_EDGES;
+        w.sc.render.max_depth = 12;
+        w.sc.render.background = rf_rgb(0.2, 0.3, 0.4);
+        RfRenderOptions ro = rf_render_options_default();
+        int side = std::max(8, (int)std::ceil(std::sqrt((double)o.rays / 6 / 4)));
+        ro.width = ro.height = std::min(side, 2048);
+        ro.samples = 4;
+        ro.threads = 1;
+        ro.seed = o.seed;
+        ro.fixed_offset = o.fixed_offset;
+        RfImage img;
+        RfRenderStats rs;
+        if (rf_render(&w.sc, &ro, &img, &rs) != RF_OK) {
+            st.real++;
+            example(st, "stress render %d failed", variant);
+            continue;
+        }
+        st.rays += (long)rs.primary_rays;
+        st.real += (long)rs.invalid_samples;
+        st.agree += (long)(rs.primary_rays - rs.invalid_samples);
+        if (rs.invalid_samples)
+            example(st, "stress render %d (scale %g): %llu invalid samples", variant, s,
+                    (unsigned long long)rs.invalid_samples);
+        for (size_t i = 0; i < (size_t)img.width * img.height * 3; i++)
+            if (!std::isfinite(img.data[i])) {
+                st.real++;
+                example(st, "stress render %d: a non-finite pixel reached the film", variant);
+                break;
+            }
+        rf_image_free(&img);
+    }
+}
+
+// ---- driver ------------------------------------------------------------------------------------
+
+const char *const kFileClasses[] = {"uniform", "edges", "grazing", "parallel", "surface"};
+
+bool load_world(const char *path, World &w)
+{
+    char err[1024];
+    rf_scene_free(&w.sc);
+    rf_scene_init(&w.sc);
+    if (rf_scene_load(path, nullptr, &w.sc, err, sizeof err) != RF_OK) {
+        fprintf(stderr, "%s\n", err);
+        return false;
+    }
+    w.prim_mesh.assign(w.sc.prim_count, -1);
+    rf_scene_bounds(&w.sc, &w.bounds.lo, &w.bounds.hi);
+    w.finish();
+    return true;
+}
+
+Stats run_class(const char *cls, const Opts &o, World *file_world)
+{
+    Stats st;
+    memset(&st, 0, sizeof st);
+    snprintf(st.name, sizeof st.name, "%s", cls);
+    auto t0 = std::chrono::steady_clock::now();
+    std::string c = cls;
+    if (c.compare(0, 6, "scene:") == 0) { // a scene file: every file class, one row
+        const char *path = cls + 6, *base = strrchr(path, '/');
+        snprintf(st.name, sizeof st.name, "%s", base ? base + 1 : path);
+        World w;
+        Opts so = o;
+        so.rays = o.scene_rays;
+        if (!load_world(path, w)) {
+            st.real = 1;
+            example(st, "cannot load %s", path);
+        } else {
+            for (const char *fc : kFileClasses)
+                run_file(fc, so, w, st);
+        }
+    } else if (file_world)
+        run_file(cls, o, *file_world, st);
+    else if (c == "acne")
+        run_acne(o, st);
+    else if (c == "leak")
+        run_leak(o, st);
+    else if (c == "optics")
+        run_optics(o, st);
+    else if (c == "invalid")
+        run_invalid(o, st);
+    else
+        run_rays(cls, o, st);
+    st.secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return st;
+}
+
+void print_table(const std::vector<Stats> &rows, FILE *f)
+{
+    fprintf(f, "%-13s %10s %10s %10s %6s %11s %8s %12s %8s\n", "class", "rays", "agree", "ambiguous", "real",
+            "edge misses", "skipped", "acne share", "seconds");
+    Stats tot;
+    memset(&tot, 0, sizeof tot);
+    for (const Stats &s : rows) {
+        char acne[32] = "-";
+        if (s.acne_d)
+            snprintf(acne, sizeof acne, "%ld/%ld", s.acne_n, s.acne_d);
+        fprintf(f, "%-13s %10ld %10ld %10ld %6ld %11ld %8ld %12s %8.1f\n", s.name, s.rays, s.agree, s.amb, s.real,
+                s.edge_miss, s.skipped, acne, s.secs);
+        tot.rays += s.rays, tot.agree += s.agree, tot.amb += s.amb, tot.real += s.real;
+        tot.edge_miss += s.edge_miss, tot.skipped += s.skipped, tot.acne_n += s.acne_n, tot.acne_d += s.acne_d;
+        tot.secs += s.secs;
+    }
+    char acne[32] = "-";
+    if (tot.acne_d)
+        snprintf(acne, sizeof acne, "%ld/%ld", tot.acne_n, tot.acne_d);
+    fprintf(f, "%-13s %10ld %10ld %10ld %6ld %11ld %8ld %12s %8.1f\n", "total", tot.rays, tot.agree, tot.amb, tot.real,
+            tot.edge_miss, tot.skipped, acne, tot.secs);
+    for (const Stats &s : rows)
+        for (int i = 0; i < s.n_examples; i++)
+            fprintf(f, "real (%s): %s\n", s.name, s.examples[i]);
+}
+
+// Runs the classes, up to `jobs` at once in child processes (no shared state: each child
+// builds its own scenes and sends its Stats back through a pipe).
+std::vector<Stats> run_all(const std::vector<std::string> &classes, const Opts &o, int jobs, World *fw)
+{
+    std::vector<Stats> rows(classes.size());
+    if (jobs <= 1 || fw) {
+        for (size_t i = 0; i < classes.size(); i++)
+            rows[i] = run_class(classes[i].c_str(), o, fw);
+        return rows;
+    }
+    size_t next = 0, done = 0;
+    std::map<pid_t, std::pair<size_t, int>> running;
+    while (done < classes.size()) {
+        while ((int)running.size() < jobs && next < classes.size()) {
+            int fd[2];
+            if (pipe(fd) != 0) {
+                perror("pipe");
+                exit(2);
+            }
+            fflush(nullptr);
+            pid_t pid = fork();
+            if (pid == 0) {
+                close(fd[0]);
+                Stats st = run_class(classes[next].c_str(), o, nullptr);
+                ssize_t wr = write(fd[1], &st, sizeof st);
+                _exit(wr == (ssize_t)sizeof st ? 0 : 3);
+            }
+            close(fd[1]);
+            running[pid] = {next++, fd[0]};
+        }
+        int status;
+        pid_t pid = wait(&status);
+        auto it = running.find(pid);
+        if (it == running.end())
+            continue;
+        Stats st;
+        size_t got = 0;
+        while (got < sizeof st) {
+            ssize_t k = read(it->second.second, (char *)&st + got, sizeof st - got);
+            if (k <= 0)
+                break;
+            got += (size_t)k;
+        }
+        close(it->second.second);
+        if (got != sizeof st || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+            fprintf(stderr, "refray-verify: class %s crashed\n", classes[it->second.first].c_str());
+            memset(&st, 0, sizeof st);
+            snprintf(st.name, sizeof st.name, "%s", classes[it->second.first].c_str());
+            st.real = 1;
+        }
+        rows[it->second.first] = st;
+        running.erase(it);
+        done++;
+    }
+    return rows;
+}
+
+void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: refray-verify [SCENE...] [--rays N] [--class CLASS] [--seed S] [--jobs J] [--stress]\n"
+            "                     [--scene-rays N] [--triangle watertight|moller|script]\n"
+            "                     [--sphere stable|script] [--fixed-offset EPS]\n"
+            "  SCENE           an .nff/.rf/.obj scene: rays of the classes uniform, edges, grazing, parallel,\n"
+            "                  surface over its primitives, a row per class (default: every class on\n"
+            "                  scenes built in code); several scenes or --stress: one row per scene with\n"
+            "                  --scene-rays rays per class (default rays/50)\n"
+            "  --class         one of uniform edges grazing parallel far radii surface acne leak optics\n"
+            "                  invalid (repeatable; default: all)\n"
+            "  --rays N        rays per class (default 100000)\n"
+            "  --stress        every class, the table of make stress\n"
+            "  --triangle, --sphere   test the §3.5 kernels with these methods instead of the tracer\n"
+            "  --fixed-offset  replace the self-intersection policy by a fixed absolute offset\n"
+            "Exit status: 0 when no real disagreement, 1 otherwise, 2 on bad usage. docs/verify.md\n");
+}
+
+} // namespace
+} // namespace rv
+
+int main(int argc, char **argv)
+{
+    using namespace rv;
+    Opts o;
+    std::vector<std::string> classes;
+    std::vector<const char *> scenes;
+    bool stress = false;
+    int jobs = 1;
+    for (int i = 1; i < argc; i++) {
+        std::string a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : nullptr;
+        if (a == "--help" || a == "-h") {
+            usage(stdout);
+            return 0;
+        } else if (a == "--rays" && v) {
+            o.rays = std::atol(v), i++;
+        } else if (a == "--seed" && v) {
+            o.seed = std::strtoull(v, nullptr, 10), i++;
+        } else if (a == "--jobs" && v) {
+            jobs = std::atoi(v), i++;
+        } else if (a == "--class" && v) {
+            classes.push_back(v), i++;
+        } else if (a == "--stress") {
+            stress = true;
+        } else if (a == "--scene-rays" && v) {
+            o.scene_rays = std::atol(v), i++;
+        } else if (a == "--triangle" && v) {
+            std::string m = v;
+            i++;
+            o.kernel = true;
+            o.tri = m == "moller" ? RF_TRIANGLE_MOLLER : m == "script" ? RF_TRIANGLE_SCRIPT : RF_TRIANGLE_WATERTIGHT;
+        } else if (a == "--sphere" && v) {
+            o.kernel = true;
+            o.sph = std::string(v) == "script" ? RF_SPHERE_SCRIPT : RF_SPHERE_STABLE;
+            i++;
+        } else if (a == "--fixed-offset" && v) {
+            o.fixed_offset = std::atof(v), i++;
+        } else if (a[0] != '-') {
+            scenes.push_back(argv[i]);
+        } else {
+            fprintf(stderr, "refray-verify: unknown or incomplete option '%s'\n", a.c_str());
+            usage(stderr);
+            return 2;
+        }
+    }
+    if (o.rays < 0 || jobs < 1) {
+        usage(stderr);
+        return 2;
+    }
+    for (const std::string &c : classes)
+        if (std::find(std::begin(kAllClasses), std::end(kAllClasses), c) == std::end(kAllClasses) &&
+            c.compare(0, 6, "scene:") != 0) {
+            fprintf(stderr, "refray-verify: unknown class '%s'\n", c.c_str());
+            return 2;
+        }
+    if (o.scene_rays <= 0)
+        o.scene_rays = std::max(1L, o.rays / 50);
+    std::unique_ptr<World> fw;
+    if (scenes.size() == 1 && !stress) { // one scene: a row per class over it
+        o.scene = scenes[0];
+        fw.reset(new World);
+        if (!load_world(o.scene, *fw))
+            return 2;
+        if (classes.empty())
+            classes.assign(std::begin(kFileClasses), std::end(kFileClasses));
+        for (const std::string &c : classes)
+            if (std::find(std::begin(kFileClasses), std::end(kFileClasses), c) == std::end(kFileClasses)) {
+                fprintf(stderr, "refray-verify: class '%s' runs on built-in scenes only\n", c.c_str());
+                return 2;
+            }
+    } else {
+        if (stress || (classes.empty() && scenes.empty()))
+            classes.assign(std::begin(kAllClasses), std::end(kAllClasses));
+        for (const char *sc : scenes) // several scenes, or --stress: one aggregated row each
+            classes.push_back(std::string("scene:") + sc);
+    }
+    std::vector<Stats> rows = run_all(classes, o, jobs, fw.get());
+    printf("refray-verify: %s, %ld rays per class (%ld per class in scene rows), seed %llu%s\n",
+           o.scene ? o.scene : "built-in scenes", o.rays, o.scene_rays, (unsigned long long)o.seed,
+           o.kernel ? " (kernel mode: planted methods)" : "");
+    if (o.fixed_offset > 0)
+        printf("planted: fixed self-intersection offset %g\n", o.fixed_offset);
+    print_table(rows, stdout);
+    long real = 0;
+    for (const Stats &s : rows)
+        real += s.real;
+    printf("%s\n", real ? "FAIL: real disagreements" : "OK: no real disagreement");
+    return real ? 1 : 0;
+}

@@ -1,0 +1,87 @@
+/* refray: image comparison (issue 5), shared by `refray diff`, the tests and the HTML report.
+ *
+ * Metrics over RGB channel values (A = the image under test, B = the reference):
+ *   max_abs  = max |A - B|, mean_abs = mean |A - B|, rmse = sqrt(mean (A - B)^2),
+ *   psnr     = 20 log10(1 / rmse) dB (peak 1; +inf for identical images),
+ *   rel_mse  = mean (A - B)^2 / (B^2 + 0.01) (eps 0.01 as adobe/sbmc; no factor 0.5).
+ * A pixel's error is its largest channel error; the shares count pixels above a threshold.
+ * Silhouettes: pixels where either depth image is discontinuous (rf_diff_silhouettes); the same
+ * metrics over the remaining pixels are the "interior" ones, and the verdict uses them.
+ *
+ * Verdict (OpenImageIO idiff's ladder, refray's defaults tuned to the comparator's accuracy
+ * goal): FAIL when a value is NaN/Inf on one side only, a pixel error exceeds hardfail, more than
+ * fail_percent % of the pixels exceed fail, or mean_abs exceeds fail_mean; otherwise WARN when
+ * more than warn_percent % exceed warn; otherwise PASS. */
+#ifndef REFRAY_DIFF_H
+#define REFRAY_DIFF_H
+
+#include <stddef.h>
+
+#include "refray/image.h"
+#include "refray/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct {
+    double warn, warn_percent;  /* defaults 1e-4, 0.1 % */
+    double fail, fail_percent;  /* defaults 1/255 (0.00392), 0.1 % */
+    double fail_mean;           /* default 1e-4; INFINITY: off */
+    double hardfail;            /* default INFINITY (off) */
+    double depth_edge;          /* silhouette threshold, rf_diff_silhouettes; default 0.01 */
+} RfDiffOptions;
+
+RfDiffOptions rf_diff_options_default(void);
+
+typedef struct {
+    long pixels;                /* pixels compared */
+    long nonfinite;             /* pixels with NaN/Inf in one image but not the same in the other */
+    double max_abs, mean_abs, rmse, psnr, rel_mse;
+    int max_x, max_y;           /* where max_abs is (row 0 at the top); -1 when no pixel */
+    long above_255, above_warn, above_fail; /* pixels whose error exceeds 1/255, warn, fail */
+} RfDiffStats;
+
+typedef enum { RF_DIFF_PASS = 0, RF_DIFF_WARN = 1, RF_DIFF_FAIL = 2 } RfDiffVerdict;
+
+typedef struct {
+    RfDiffStats all, interior;  /* interior = all when no depth is given */
+    int has_depth;
+    long silhouette;            /* pixels masked as silhouettes */
+    long coverage_mismatch;     /* depth finite in one image, background (inf) in the other */
+    double depth_max_rel, depth_mean_rel; /* |zA - zB| / zB over interior pixels both hit */
+    RfDiffVerdict verdict;
+} RfDiffResult;
+
+/* Share of s.pixels in percent (0 for no pixels). */
+double rf_diff_percent(long count, const RfDiffStats *s);
+const char *rf_diff_verdict_name(RfDiffVerdict v); /* "PASS", "WARN", "FAIL" */
+
+/* Marks (sets to 1, never clears) the silhouette pixels of a one-channel depth image (linear
+ * eye-space depth, +inf = background) in mask[width * height]: every pixel of a horizontal or
+ * vertical run of three whose inverse depths 1/z (0 for background) have a second difference
+ * above edge * the run's largest 1/z. 1/z is linear across a plane in screen space, so planes
+ * never trip it; a jump between objects or onto the background always does. */
+void rf_diff_silhouettes(const RfImage *depth, double edge, unsigned char *mask);
+
+/* Compares a with b (same size; the first three channels, or one channel each). da, db: depth
+ * images of the same size or NULL (both or neither). mask_out (may be NULL) gets the silhouette
+ * mask (width * height bytes). RF_ERR_DOMAIN with a message for mismatched sizes/channels. */
+RfStatus rf_diff_images(const RfImage *a, const RfImage *b, const RfImage *da, const RfImage *db,
+                        const RfDiffOptions *opt, RfDiffResult *res, unsigned char *mask_out,
+                        char *err, size_t errsz);
+
+/* The error heatmap: per pixel the error e on a log scale, 1e-6 (black) .. 1 (white) through
+ * purple, red and yellow; 0 is black; silhouette pixels (mask != NULL) are drawn at half
+ * brightness over grey. Display-ready RGB (write with RF_PNG_AS_IS). */
+RfStatus rf_diff_heatmap(const RfImage *a, const RfImage *b, const unsigned char *mask, RfImage *out);
+/* The depth comparison: |zA - zB| / zB on a log scale 1e-7 .. 0.1, magenta where only one image
+ * hits something, black where neither does, grey for silhouettes. */
+RfStatus rf_diff_depth_heatmap(const RfImage *da, const RfImage *db, const unsigned char *mask,
+                               RfImage *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

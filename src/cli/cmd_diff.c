@@ -1,0 +1,252 @@
+/* `refray diff`: compares two images (EXR or PNG) with the metrics of diff.h, optionally away from
+ * silhouettes given depth images, writes heatmaps, and exits like OpenImageIO's idiff. */
+#include "cli.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "refray/diff.h"
+#include "refray/image.h"
+#include "refray/transfer.h"
+
+/* idiff's codes (0 pass, 1 warn, 2 fail, 3 size/channel mismatch, 4 file error), plus 5 for a
+ * command-line error, which idiff has no separate code for */
+enum { EXIT_MISMATCH = 3, EXIT_FILE = 4, EXIT_USAGE = 5 };
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: refray diff A B [--heatmap OUT.png] [--depth-a DA.exr --depth-b DB.exr]\n"
+            "                   [--depth-heatmap OUT.png] [--warn X] [--warnpercent P] [--fail Y]\n"
+            "                   [--failpercent P] [--fail-mean M] [--hardfail H] [--depth-edge E]\n"
+            "                   [--gamma G | --srgb | --as-is] [--space linear|display] [--kv]\n"
+            "  A is the image under test, B the reference (EXR or PNG; PNG is decoded with --gamma G,\n"
+            "  default 2.2, or --srgb). --space display compares the gamma/sRGB-encoded values, so\n"
+            "  that one 8-bit code is 1/255 (the default when A or B is a PNG: grading a student's\n"
+            "  PNG); linear compares linear values (the default for two EXRs).\n"
+            "  With depth images, pixels at depth discontinuities (silhouettes) of either are\n"
+            "  reported separately and the verdict uses the others.\n"
+            "  FAIL: more than --failpercent %% (0.1) of pixels differ by more than --fail (1/255),\n"
+            "        the mean difference exceeds --fail-mean (1e-4), a pixel exceeds --hardfail\n"
+            "        (off), or a value is NaN/Inf on one side; WARN: more than --warnpercent %% (0.1)\n"
+            "        differ by more than --warn (1e-4); otherwise PASS. In display values the defaults\n"
+            "        allow 8-bit rounding: --fail-mean 1/255, --warn 0.5/255.\n"
+            "  --kv prints key=value lines (for scripts).\n"
+            "exit: 0 pass, 1 warn, 2 fail, 3 size or channel mismatch, 4 file error, 5 usage error\n");
+}
+
+static int parse_double(const char *s, double *out)
+{
+    char *end;
+    double v = strtod(s, &end);
+    if (*s == 0 || *end != 0 || !(v >= 0.0))
+        return 0;
+    *out = v;
+    return 1;
+}
+
+static int is_png(const char *path)
+{
+    unsigned char sig[8];
+    FILE *f = fopen(path, "rb");
+    int png = f && fread(sig, 1, 8, f) == 8 && memcmp(sig, "\x89PNG\r\n\x1a\n", 8) == 0;
+    if (f)
+        fclose(f);
+    return png;
+}
+
+/* linear -> display values with the PNG curve, clamped to [0, 1] like a PNG writer would */
+static void encode_display(RfImage *img, RfPngOptions p)
+{
+    size_t n = (size_t)img->width * img->height * img->channels;
+    for (size_t i = 0; i < n; i++) {
+        double v = img->data[i];
+        if (img->channels == 4 && i % 4 == 3)
+            continue;
+        if (p.encoding == RF_PNG_GAMMA)
+            v = rf_gamma_encode(v, p.gamma);
+        else if (p.encoding == RF_PNG_SRGB)
+            v = rf_srgb_encode(v);
+        if (!isnan(v))
+            v = v < 0.0 ? 0.0 : v > 1.0 ? 1.0 : v;
+        img->data[i] = (float)v;
+    }
+}
+
+static void print_stats(const char *title, const char *key, const RfDiffStats *s, const RfDiffOptions *o, int kv)
+{
+    if (kv) {
+        printf("%s.pixels=%ld\n%s.nonfinite=%ld\n%s.max_abs=%.9g\n%s.max_x=%d\n%s.max_y=%d\n"
+               "%s.mean_abs=%.9g\n%s.rmse=%.9g\n%s.psnr=%.6g\n%s.rel_mse=%.9g\n"
+               "%s.pct_above_255=%.6g\n%s.pct_above_warn=%.6g\n%s.pct_above_fail=%.6g\n",
+               key, s->pixels, key, s->nonfinite, key, s->max_abs, key, s->max_x, key, s->max_y, key,
+               s->mean_abs, key, s->rmse, key, s->psnr, key, s->rel_mse, key,
+               rf_diff_percent(s->above_255, s), key, rf_diff_percent(s->above_warn, s), key,
+               rf_diff_percent(s->above_fail, s));
+        return;
+    }
+    printf("%s (%ld pixels):\n", title, s->pixels);
+    printf("  max abs error   %.6g at (%d, %d)\n", s->max_abs, s->max_x, s->max_y);
+    printf("  mean abs error  %.6g\n  RMSE            %.6g\n  PSNR            %.2f dB\n", s->mean_abs, s->rmse,
+           s->psnr);
+    printf("  relMSE          %.6g   (mean (A-B)^2 / (B^2 + 0.01))\n", s->rel_mse);
+    printf("  above 1/255     %ld (%.4f %%)\n", s->above_255, rf_diff_percent(s->above_255, s));
+    printf("  above warn %-5g%ld (%.4f %%)\n", o->warn, s->above_warn, rf_diff_percent(s->above_warn, s));
+    printf("  above fail %-5.3g%ld (%.4f %%)\n", o->fail, s->above_fail, rf_diff_percent(s->above_fail, s));
+    if (s->nonfinite)
+        printf("  NaN/Inf         %ld pixels\n", s->nonfinite);
+}
+
+static int write_png(const char *path, const RfImage *img, char *err, size_t errsz)
+{
+    RfPngOptions p = {RF_PNG_AS_IS, 1.0, 8};
+    return rf_png_write(path, img, p, err, errsz) == RF_OK;
+}
+
+int rf_cmd_diff(int argc, char **argv)
+{
+    const char *pa = NULL, *pb = NULL, *heatmap = NULL, *depth_heatmap = NULL, *pda = NULL, *pdb = NULL;
+    RfDiffOptions o = rf_diff_options_default();
+    RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8};
+    int kv = 0, space = -1; /* -1 auto, 0 linear, 1 display */
+    int set_warn = 0, set_mean = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int ok = 1;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--heatmap") == 0 && v) {
+            heatmap = v, i++;
+        } else if (strcmp(a, "--depth-heatmap") == 0 && v) {
+            depth_heatmap = v, i++;
+        } else if (strcmp(a, "--depth-a") == 0 && v) {
+            pda = v, i++;
+        } else if (strcmp(a, "--depth-b") == 0 && v) {
+            pdb = v, i++;
+        } else if (strcmp(a, "--warn") == 0 && v) {
+            ok = parse_double(v, &o.warn), set_warn = 1, i++;
+        } else if (strcmp(a, "--warnpercent") == 0 && v) {
+            ok = parse_double(v, &o.warn_percent), i++;
+        } else if (strcmp(a, "--fail") == 0 && v) {
+            ok = parse_double(v, &o.fail), i++;
+        } else if (strcmp(a, "--failpercent") == 0 && v) {
+            ok = parse_double(v, &o.fail_percent), i++;
+        } else if (strcmp(a, "--fail-mean") == 0 && v) {
+            ok = parse_double(v, &o.fail_mean), set_mean = 1, i++;
+        } else if (strcmp(a, "--hardfail") == 0 && v) {
+            ok = parse_double(v, &o.hardfail), i++;
+        } else if (strcmp(a, "--depth-edge") == 0 && v) {
+            ok = parse_double(v, &o.depth_edge), i++;
+        } else if (strcmp(a, "--gamma") == 0 && v) {
+            popt.encoding = RF_PNG_GAMMA;
+            ok = parse_double(v, &popt.gamma) && popt.gamma > 0.0 && popt.gamma < 10.0, i++;
+        } else if (strcmp(a, "--srgb") == 0) {
+            popt.encoding = RF_PNG_SRGB;
+        } else if (strcmp(a, "--as-is") == 0) {
+            popt.encoding = RF_PNG_AS_IS;
+        } else if (strcmp(a, "--space") == 0 && v) {
+            i++;
+            space = strcmp(v, "linear") == 0 ? 0 : strcmp(v, "display") == 0 ? 1 : -2;
+            ok = space >= 0;
+        } else if (strcmp(a, "--kv") == 0) {
+            kv = 1;
+        } else if (a[0] != '-' && !pa) {
+            pa = a;
+        } else if (a[0] != '-' && !pb) {
+            pb = a;
+        } else {
+            fprintf(stderr, "refray diff: unknown or incomplete option '%s' (see: refray diff --help)\n", a);
+            return EXIT_USAGE;
+        }
+        if (!ok) {
+            fprintf(stderr, "refray diff: bad value for %s\n", a);
+            return EXIT_USAGE;
+        }
+    }
+    if (!pa || !pb || (!pda) != (!pdb) || (depth_heatmap && !pda)) {
+        if (pa && pb)
+            fprintf(stderr, "refray diff: --depth-a and --depth-b go together (and --depth-heatmap needs them)\n");
+        else
+            usage(stderr);
+        return EXIT_USAGE;
+    }
+    if (space < 0)
+        space = is_png(pa) || is_png(pb);
+    if (space == 1) {
+        /* display values of an 8-bit PNG are rounded by up to half a code: a correct PNG has mean
+         * error up to 0.5/255, so the mean may reach one code; anything beyond rounding warns */
+        if (!set_mean)
+            o.fail_mean = 1.0 / 255.0;
+        if (!set_warn)
+            o.warn = 0.5 / 255.0 + 1e-6;
+    }
+    char err[1024];
+    RfImage ia, ib, da, db, heat;
+    memset(&heat, 0, sizeof heat), memset(&ia, 0, sizeof ia), memset(&ib, 0, sizeof ib), memset(&da, 0, sizeof da), memset(&db, 0, sizeof db);
+    int rc = 0;
+    if (rf_image_read(pa, popt, &ia, err, sizeof err) != RF_OK || rf_image_read(pb, popt, &ib, err, sizeof err) != RF_OK ||
+        (pda && (rf_image_read(pda, popt, &da, err, sizeof err) != RF_OK ||
+                 rf_image_read(pdb, popt, &db, err, sizeof err) != RF_OK))) {
+        fprintf(stderr, "refray diff: %s\n", err);
+        rc = EXIT_FILE;
+        goto done;
+    }
+    if (space == 1) {
+        encode_display(&ia, popt);
+        encode_display(&ib, popt);
+    }
+    RfDiffResult res;
+    unsigned char *mask = malloc((size_t)ia.width * ia.height + 1);
+    if (!mask) {
+        fprintf(stderr, "refray diff: out of memory\n");
+        rc = EXIT_FILE;
+        goto done;
+    }
+    RfStatus st = rf_diff_images(&ia, &ib, pda ? &da : NULL, pdb ? &db : NULL, &o, &res, mask, err, sizeof err);
+    if (st != RF_OK) {
+        fprintf(stderr, "refray diff: %s\n", err);
+        free(mask);
+        rc = st == RF_ERR_DOMAIN ? EXIT_MISMATCH : EXIT_FILE;
+        goto done;
+    }
+    if (kv) {
+        printf("a=%s\nb=%s\nwidth=%d\nheight=%d\nspace=%s\n", pa, pb, ia.width, ia.height, space ? "display" : "linear");
+    } else {
+        printf("A: %s\nB: %s (reference)\n%d x %d, compared in %s values\n", pa, pb, ia.width, ia.height,
+               space ? "display (encoded)" : "linear");
+    }
+    print_stats("all pixels", "all", &res.all, &o, kv);
+    if (res.has_depth) {
+        print_stats("away from silhouettes", "interior", &res.interior, &o, kv);
+        if (kv)
+            printf("silhouette=%ld\ncoverage_mismatch=%ld\ndepth_max_rel=%.9g\ndepth_mean_rel=%.9g\n", res.silhouette,
+                   res.coverage_mismatch, res.depth_max_rel, res.depth_mean_rel);
+        else
+            printf("silhouettes: %ld pixels masked (%.3f %%); coverage differs at %ld pixels\n"
+                   "depth away from silhouettes: max rel error %.3g, mean %.3g\n",
+                   res.silhouette, 100.0 * res.silhouette / ((double)ia.width * ia.height), res.coverage_mismatch,
+                   res.depth_max_rel, res.depth_mean_rel);
+    }
+    printf(kv ? "verdict=%s\n" : "verdict: %s\n", rf_diff_verdict_name(res.verdict));
+    rc = (int)res.verdict;
+    if (heatmap) {
+        if (rf_diff_heatmap(&ia, &ib, res.has_depth ? mask : NULL, &heat) != RF_OK || !write_png(heatmap, &heat, err, sizeof err)) {
+            fprintf(stderr, "refray diff: %s\n", heat.data ? err : "cannot make the heatmap");
+            rc = EXIT_FILE;
+        }
+        rf_image_free(&heat);
+    }
+    if (depth_heatmap && rc != EXIT_FILE) {
+        if (rf_diff_depth_heatmap(&da, &db, mask, &heat) != RF_OK || !write_png(depth_heatmap, &heat, err, sizeof err)) {
+            fprintf(stderr, "refray diff: %s\n", heat.data ? err : "cannot make the depth heatmap");
+            rc = EXIT_FILE;
+        }
+        rf_image_free(&heat);
+    }
+    free(mask);
+done:
+    rf_image_free(&ia), rf_image_free(&ib), rf_image_free(&da), rf_image_free(&db);
+    return rc;
+}

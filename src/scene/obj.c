@@ -1,0 +1,587 @@
+/* refray: the Wavefront OBJ reader (docs/scene-format.md "OBJ and MTL").
+ *
+ * Statements: v (x y z, an optional w or r g b is ignored), vt (counted, for index checks),
+ * vn, f / fo with every index form (v, v/vt, v//vn, v/vt/vn; negative indices count back from
+ * the last one defined), o and g (names, accepted), s (smoothing group; `s off` / `s 0` shade
+ * flat), usemtl, mtllib (paths relative to the OBJ file). Free-form geometry and display
+ * statements (l, p, curv, surf, ...) are skipped; any other keyword is an error.
+ *
+ * Faces: a triangle becomes RF_PRIM_TRIANGLE, a larger face RF_PRIM_POLYGON (a convex one is
+ * fanned by the tracer; a concave planar one is marked non-convex by the model and
+ * intersected with the point-in-polygon test, shaded flat). Faces of zero area are dropped.
+ * Indices must refer to vertices defined earlier in the file.
+ *
+ * Normals (§3.6.3): `vn` where the face gives them; otherwise, in a smoothing group, per
+ * corner the normalised sum of the area vectors (cross products, area-weighted, not divided by
+ * a count) of the faces of that group around the vertex whose normals lie within the crease
+ * angle of this face's normal. A face with `s off` gets no vertex normals (flat). Files
+ * without `s` are smoothed (group 1): the crease angle keeps their hard edges. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "reader.h"
+#include "refray/numeric.h"
+#include "refray/scene_io.h"
+
+#define RF_OBJ_PATH_MAX 4096
+
+typedef struct { long v, vn; } Corner; /* 0-based; vn = -1 without a normal */
+
+typedef struct {
+    size_t first; /* into corners */
+    int n;
+    int material; /* -1: the placement's */
+    long group;   /* smoothing group, 0 = off (flat) */
+    int has_vn;
+    RfSrcLoc loc;
+} Face;
+
+typedef struct {
+    RfLexer lx;
+    RfScene *scene;
+    const RfObjPlacement *pl;
+    RfVec3 *pos, *nrm;
+    size_t npos, nnrm, ntex, cap_pos, cap_nrm;
+    Corner *corners;
+    size_t ncorners, cap_corners;
+    Face *faces;
+    size_t nfaces, cap_faces;
+    int material; /* current material, -1: the placement's */
+    long group;
+} ObjReader;
+
+static int grow(void **arr, size_t *cap, size_t count, size_t elem)
+{
+    if (count < *cap)
+        return 1;
+    size_t c = *cap ? *cap * 2 : 256;
+    if (c > SIZE_MAX / elem)
+        return 0;
+    void *p = realloc(*arr, c * elem);
+    if (!p)
+        return 0;
+    *arr = p;
+    *cap = c;
+    return 1;
+}
+
+static int eol(const RfLexer *lx) { return lx->tok.kind == RF_TOK_EOF || lx->tok.bol; }
+
+static void skip_line(RfLexer *lx)
+{
+    while (!eol(lx))
+        rf_lex_advance(lx);
+}
+
+static RfStatus oom(ObjReader *r) { return rf_lex_error(&r->lx, r->lx.last.line, r->lx.last.col, "out of memory"); }
+
+/* v x y z [w | r g b]: the optional values are read (they must be numbers) and ignored. */
+static RfStatus read_vertex(ObjReader *r, const RfToken *kw)
+{
+    RfVec3 v;
+    double extra;
+    int n = 0;
+    RfStatus st = rf_lex_vec3(&r->lx, "vertex coordinate", &v);
+    while (!st && !eol(&r->lx) && n < 4) {
+        st = rf_lex_number(&r->lx, "vertex w or colour", &extra);
+        n++;
+    }
+    if (!st && (n == 2 || n > 3))
+        st = rf_lex_error(&r->lx, r->lx.last.line, r->lx.last.col,
+                          "'v' takes x y z and an optional w or r g b, found %d extra numbers", n);
+    if (st)
+        return st;
+    if (!grow((void **)&r->pos, &r->cap_pos, r->npos, sizeof *r->pos))
+        return oom(r);
+    r->pos[r->npos++] = v;
+    (void)kw;
+    return RF_OK;
+}
+
+static RfStatus read_normal(ObjReader *r)
+{
+    RfVec3 n;
+    RfStatus st = rf_lex_vec3(&r->lx, "normal component", &n);
+    if (st)
+        return st;
+    if (!grow((void **)&r->nrm, &r->cap_nrm, r->nnrm, sizeof *r->nrm))
+        return oom(r);
+    r->nrm[r->nnrm++] = n;
+    return RF_OK;
+}
+
+/* vt u [v [w]] */
+static RfStatus read_texcoord(ObjReader *r)
+{
+    double t;
+    int n = 0;
+    RfStatus st = rf_lex_number(&r->lx, "texture coordinate", &t);
+    while (!st && !eol(&r->lx) && n < 2) {
+        st = rf_lex_number(&r->lx, "texture coordinate", &t);
+        n++;
+    }
+    r->ntex++;
+    return st;
+}
+
+/* One index of a face corner: 1-based or negative (relative to the last `count` defined). */
+static RfStatus resolve(ObjReader *r, const RfToken *t, const char *s, size_t len, size_t count,
+                        const char *what, long *out)
+{
+    char buf[32], q[96];
+    char *end = NULL;
+    if (len == 0 || len >= sizeof buf)
+        return rf_lex_error(&r->lx, t->line, t->col, "malformed face corner %s (v, v/vt, v//vn or v/vt/vn)",
+                            rf_lex_quote(t, q, sizeof q));
+    memcpy(buf, s, len);
+    buf[len] = 0;
+    long v = strtol(buf, &end, 10);
+    if (*end)
+        return rf_lex_error(&r->lx, t->line, t->col, "malformed face corner %s (v, v/vt, v//vn or v/vt/vn)",
+                            rf_lex_quote(t, q, sizeof q));
+    if (v == 0)
+        return rf_lex_error(&r->lx, t->line, t->col, "%s index 0 in %s: OBJ indices start at 1",
+                            what, rf_lex_quote(t, q, sizeof q));
+    long idx = v > 0 ? v - 1 : (long)count + v;
+    if (idx < 0 || (size_t)idx >= count)
+        return rf_lex_error(&r->lx, t->line, t->col, "%s index %ld out of range in %s (%zu defined so far)",
+                            what, v, rf_lex_quote(t, q, sizeof q), count);
+    *out = idx;
+    return RF_OK;
+}
+
+/* A corner token; *form gets 0 (v), 1 (v/vt), 2 (v//vn) or 3 (v/vt/vn). */
+static RfStatus read_corner(ObjReader *r, const RfToken *t, Corner *c, int *form)
+{
+    const char *s = t->s, *end = t->s + t->len;
+    const char *s1 = memchr(s, '/', t->len);
+    const char *s2 = s1 ? memchr(s1 + 1, '/', (size_t)(end - s1 - 1)) : NULL;
+    long vt;
+    RfStatus st = resolve(r, t, s, (size_t)((s1 ? s1 : end) - s), r->npos, "vertex", &c->v);
+    c->vn = -1;
+    *form = 0;
+    if (st || !s1)
+        return st;
+    const char *tex = s1 + 1, *tex_end = s2 ? s2 : end;
+    if (tex_end > tex && (st = resolve(r, t, tex, (size_t)(tex_end - tex), r->ntex, "texture", &vt)))
+        return st;
+    *form = tex_end > tex ? 1 : 2;
+    if (!s2) {
+        if (*form == 2) /* "v/" */
+            return resolve(r, t, tex, 0, 0, "texture", &vt);
+        return RF_OK;
+    }
+    *form = tex_end > tex ? 3 : 2;
+    return resolve(r, t, s2 + 1, (size_t)(end - s2 - 1), r->nnrm, "normal", &c->vn);
+}
+
+static RfStatus read_face(ObjReader *r, const RfToken *kw)
+{
+    static const char *const forms[] = {"v", "v/vt", "v//vn", "v/vt/vn"};
+    Face f;
+    char q[96];
+    int form0 = -1;
+    memset(&f, 0, sizeof f);
+    f.first = r->ncorners;
+    f.material = r->material;
+    f.group = r->group;
+    f.loc.line = kw->line;
+    f.loc.col = kw->col;
+    while (!eol(&r->lx)) {
+        RfToken t = r->lx.tok;
+        Corner c;
+        int form;
+        RfStatus st = read_corner(r, &t, &c, &form);
+        if (st)
+            return st;
+        if (form0 >= 0 && form != form0)
+            return rf_lex_error(&r->lx, t.line, t.col, "face corner %s is %s, the first corner was %s: one form per face",
+                                rf_lex_quote(&t, q, sizeof q), forms[form], forms[form0]);
+        form0 = form;
+        if (f.n == INT32_MAX || !grow((void **)&r->corners, &r->cap_corners, r->ncorners, sizeof c))
+            return oom(r);
+        r->corners[r->ncorners++] = c;
+        f.n++;
+        rf_lex_advance(&r->lx);
+    }
+    if (f.n < 3)
+        return rf_lex_error(&r->lx, kw->line, kw->col, "a face needs at least 3 vertices, found %d", f.n);
+    f.has_vn = form0 >= 2;
+    if (!grow((void **)&r->faces, &r->cap_faces, r->nfaces, sizeof f))
+        return oom(r);
+    r->faces[r->nfaces++] = f;
+    return RF_OK;
+}
+
+/* s off | s 0 | s on | s N */
+static RfStatus read_smoothing(ObjReader *r, const RfToken *kw)
+{
+    char q[96];
+    if (eol(&r->lx))
+        return rf_lex_error(&r->lx, r->lx.last_end_line, r->lx.last_end_col,
+                            "'s' needs a group number or 'off'");
+    RfToken t = r->lx.tok;
+    if (rf_lex_is(&t, "off")) {
+        r->group = 0;
+    } else if (rf_lex_is(&t, "on")) {
+        r->group = 1;
+    } else {
+        int g;
+        RfStatus st = rf_lex_int(&r->lx, "smoothing group", 0, INT32_MAX, &g);
+        if (st)
+            return st;
+        r->group = g;
+        return RF_OK;
+    }
+    rf_lex_advance(&r->lx);
+    (void)kw;
+    (void)q;
+    return RF_OK;
+}
+
+static RfStatus read_usemtl(ObjReader *r, const RfToken *kw)
+{
+    char q[96];
+    if (eol(&r->lx))
+        return rf_lex_error(&r->lx, kw->line, kw->col, "usemtl needs a material name");
+    RfToken t = r->lx.tok;
+    rf_lex_advance(&r->lx);
+    for (size_t i = 0; i < r->scene->material_count; i++)
+        if (strlen(r->scene->materials[i].name) == t.len &&
+            memcmp(r->scene->materials[i].name, t.s, t.len) == 0) {
+            r->material = (int)i;
+            return RF_OK;
+        }
+    return rf_lex_error(&r->lx, t.line, t.col, "unknown material %s (not in any mtllib read so far)",
+                        rf_lex_quote(&t, q, sizeof q));
+}
+
+static RfStatus read_mtllib(ObjReader *r, const RfToken *kw)
+{
+    char path[RF_OBJ_PATH_MAX], q[96], why[512];
+    if (eol(&r->lx))
+        return rf_lex_error(&r->lx, kw->line, kw->col, "mtllib needs a file name");
+    while (!eol(&r->lx)) {
+        RfToken t = r->lx.tok;
+        char *text = NULL;
+        size_t len = 0;
+        rf_lex_advance(&r->lx);
+        if (!rf__reader_relative_path(r->lx.name, t.s, t.len, path, sizeof path))
+            return rf_lex_error(&r->lx, t.line, t.col, "path %s is too long", rf_lex_quote(&t, q, sizeof q));
+        if (rf__reader_read_file(path, &text, &len, why, sizeof why)) {
+            const char *msg = strstr(why, ": ") ? strstr(why, ": ") + 2 : why;
+            msg = strstr(msg, ": ") ? strstr(msg, ": ") + 2 : msg; /* drop "path:1:1: " */
+            return rf_lex_error(&r->lx, t.line, t.col, "material library %s: %s",
+                                rf_lex_quote(&t, q, sizeof q), msg);
+        }
+        RfStatus st = rf_scene_read_mtl(path, text, len, r->scene, r->lx.err, r->lx.errsz);
+        free(text);
+        if (st)
+            return st;
+    }
+    return RF_OK;
+}
+
+static int ignored_keyword(const RfToken *kw)
+{
+    static const char *const skip[] = {"l", "p", "vp", "cstype", "deg", "bmat", "step", "curv",
+                                       "curv2", "surf", "parm", "trim", "hole", "scrv", "sp",
+                                       "end", "con", "mg", "bevel", "c_interp", "d_interp", "lod",
+                                       "usemap", "maplib", "shadow_obj", "trace_obj", "ctech",
+                                       "stech", "call", "csh"};
+    for (size_t i = 0; i < sizeof skip / sizeof skip[0]; i++)
+        if (rf_lex_is(kw, skip[i]))
+            return 1;
+    return 0;
+}
+
+static RfStatus read_statement(ObjReader *r, const RfToken *kw)
+{
+    char q[96];
+    if (rf_lex_is(kw, "v"))
+        return read_vertex(r, kw);
+    if (rf_lex_is(kw, "vn"))
+        return read_normal(r);
+    if (rf_lex_is(kw, "vt"))
+        return read_texcoord(r);
+    if (rf_lex_is(kw, "f") || rf_lex_is(kw, "fo"))
+        return read_face(r, kw);
+    if (rf_lex_is(kw, "s"))
+        return read_smoothing(r, kw);
+    if (rf_lex_is(kw, "usemtl"))
+        return read_usemtl(r, kw);
+    if (rf_lex_is(kw, "mtllib"))
+        return read_mtllib(r, kw);
+    if (rf_lex_is(kw, "o") || rf_lex_is(kw, "g") || ignored_keyword(kw)) {
+        skip_line(&r->lx);
+        return RF_OK;
+    }
+    return rf_lex_error(&r->lx, kw->line, kw->col, "unknown OBJ keyword %s", rf_lex_quote(kw, q, sizeof q));
+}
+
+/* ---- normals and faces into the scene ------------------------------------------------------ */
+
+static RfVec3 corner_pos(const ObjReader *r, const Face *f, int k)
+{
+    return r->pos[r->corners[f->first + (size_t)k].v];
+}
+
+/* Twice the vector area (the fan's cross products, = Newell's normal) and the largest squared
+ * distance from the first vertex, as the model's degeneracy test measures them. */
+static RfVec3 face_area(const ObjReader *r, const Face *f, double *ext2)
+{
+    RfVec3 sum = rf_vec3(0, 0, 0), v0 = corner_pos(r, f, 0);
+    *ext2 = 0.0;
+    for (int i = 1; i < f->n; i++) {
+        RfVec3 a = rf_vec3_sub(corner_pos(r, f, i), v0);
+        *ext2 = fmax(*ext2, rf_vec3_dot(a, a));
+        if (i + 1 < f->n)
+            sum = rf_vec3_add(sum, rf_vec3_cross(a, rf_vec3_sub(corner_pos(r, f, i + 1), v0)));
+    }
+    return sum;
+}
+
+typedef struct {
+    RfVec3 *area, *unit; /* per face */
+    size_t *start, *list; /* per position: the faces around it, list[start[v] .. start[v+1]) */
+    double cos_crease;
+} Smoothing;
+
+static void smoothing_free(Smoothing *sm)
+{
+    free(sm->area);
+    free(sm->unit);
+    free(sm->start);
+    free(sm->list);
+}
+
+static RfStatus smoothing_init(const ObjReader *r, Smoothing *sm)
+{
+    memset(sm, 0, sizeof *sm);
+    size_t nf = r->nfaces ? r->nfaces : 1, np = r->npos + 1;
+    sm->area = malloc(nf * sizeof *sm->area);
+    sm->unit = malloc(nf * sizeof *sm->unit);
+    sm->start = calloc(np + 1, sizeof *sm->start);
+    sm->list = malloc((r->ncorners ? r->ncorners : 1) * sizeof *sm->list);
+    if (!sm->area || !sm->unit || !sm->start || !sm->list)
+        return RF_ERR_NOMEM;
+    sm->cos_crease = cos(r->pl->crease_deg * (RF_PI / 180.0));
+    for (size_t i = 0; i < r->nfaces; i++) {
+        double ext2;
+        sm->area[i] = face_area(r, &r->faces[i], &ext2);
+        double len = rf_vec3_length(sm->area[i]);
+        sm->unit[i] = len > 0.0 ? rf_vec3_scale(sm->area[i], 1.0 / len) : rf_vec3(0, 0, 0);
+    }
+    for (size_t c = 0; c < r->ncorners; c++)
+        sm->start[r->corners[c].v + 1]++;
+    for (size_t v = 0; v < np; v++)
+        sm->start[v + 1] += sm->start[v];
+    size_t *fill = calloc(np, sizeof *fill);
+    if (!fill)
+        return RF_ERR_NOMEM;
+    for (size_t i = 0; i < r->nfaces; i++)
+        for (int k = 0; k < r->faces[i].n; k++) {
+            long v = r->corners[r->faces[i].first + (size_t)k].v;
+            sm->list[sm->start[v] + fill[v]++] = i;
+        }
+    free(fill);
+    return RF_OK;
+}
+
+/* §3.6.3 the normal of face fi at its corner k: the normalised area-weighted sum over the faces
+ * of its smoothing group around that vertex within the crease angle (the face itself always). */
+static RfVec3 corner_normal(const ObjReader *r, const Smoothing *sm, size_t fi, int k)
+{
+    const Face *f = &r->faces[fi];
+    long v = r->corners[f->first + (size_t)k].v;
+    RfVec3 sum = rf_vec3(0, 0, 0);
+    for (size_t j = sm->start[v]; j < sm->start[v + 1]; j++) {
+        size_t g = sm->list[j];
+        if (j > sm->start[v] && sm->list[j - 1] == g)
+            continue; /* a face that repeats this vertex counts once */
+        if (g == fi || (r->faces[g].group == f->group &&
+                        rf_vec3_dot(sm->unit[fi], sm->unit[g]) >= sm->cos_crease))
+            sum = rf_vec3_add(sum, sm->area[g]);
+    }
+    double len = rf_vec3_length(sum);
+    return len > 0.0 ? rf_vec3_scale(sum, 1.0 / len) : sm->unit[fi];
+}
+
+static RfStatus emit_faces(ObjReader *r)
+{
+    Smoothing sm;
+    RfVec3 *v = NULL, *n = NULL;
+    size_t cap = 0;
+    RfStatus st = smoothing_init(r, &sm);
+    if (st) {
+        smoothing_free(&sm);
+        return oom(r);
+    }
+    for (size_t i = 0; !st && i < r->nfaces; i++) {
+        const Face *f = &r->faces[i];
+        double ext2;
+        RfVec3 a = face_area(r, f, &ext2);
+        if (!(rf_vec3_length(a) > RF_SCENE_DEGENERATE_REL * ext2))
+            continue; /* zero area: nothing to see, and no normal to give */
+        if ((size_t)f->n > cap) {
+            free(v);
+            free(n);
+            cap = (size_t)f->n;
+            v = malloc(cap * sizeof *v);
+            n = malloc(cap * sizeof *n);
+            if (!v || !n) {
+                st = oom(r);
+                break;
+            }
+        }
+        int normals = f->has_vn || f->group != 0;
+        for (int k = 0; k < f->n; k++) {
+            const Corner *c = &r->corners[f->first + (size_t)k];
+            v[k] = r->pos[c->v];
+            if (f->has_vn)
+                n[k] = r->nrm[c->vn];
+            else if (normals)
+                n[k] = corner_normal(r, &sm, i, k);
+        }
+        RfPrimitive p;
+        memset(&p, 0, sizeof p);
+        p.type = f->n == 3 ? RF_PRIM_TRIANGLE : RF_PRIM_POLYGON;
+        p.flags = RF_PRIM_TWO_SIDED | r->pl->prim_flags | (normals ? RF_PRIM_VERTEX_NORMALS : 0u);
+        p.loc = f->loc;
+        p.u.poly.count = f->n;
+        p.material = f->material >= 0 ? f->material : r->pl->material;
+        if (p.material < 0) {
+            RfToken kw;
+            memset(&kw, 0, sizeof kw);
+            kw.line = f->loc.line;
+            kw.col = f->loc.col;
+            int def = -1;
+            for (size_t m = 0; m < r->scene->material_count && def < 0; m++)
+                if (strcmp(r->scene->materials[m].name, "default") == 0)
+                    def = (int)m;
+            if ((st = rf__reader_default_material(&r->lx, r->scene, &kw, &def)))
+                break;
+            p.material = def;
+        }
+        if (rf_scene_add_vertices(r->scene, v, normals ? n : NULL, f->n, &p.u.poly.first,
+                                  &p.u.poly.nfirst)) {
+            st = oom(r);
+            break;
+        }
+        st = rf__reader_add_prim(&r->lx, r->scene, &p);
+    }
+    free(v);
+    free(n);
+    smoothing_free(&sm);
+    return st;
+}
+
+RfStatus rf__obj_read(const char *name, const char *text, size_t len, const RfObjPlacement *pl,
+                      RfScene *scene, char *err, size_t errsz)
+{
+    ObjReader r;
+    char q[96];
+    RfStatus st = RF_OK;
+    memset(&r, 0, sizeof r);
+    r.scene = scene;
+    r.pl = pl;
+    r.material = -1;
+    r.group = 1; /* smooth unless the file says `s off` */
+    rf_lex_init(&r.lx, name, text, len, err, errsz);
+    while (!st && r.lx.tok.kind != RF_TOK_EOF) {
+        RfToken kw = r.lx.tok;
+        if (kw.kind != RF_TOK_WORD || !kw.bol) {
+            st = rf_lex_error(&r.lx, kw.line, kw.col, "expected an OBJ keyword at the start of a line, found %s",
+                              rf_lex_quote(&kw, q, sizeof q));
+            break;
+        }
+        rf_lex_advance(&r.lx);
+        st = read_statement(&r, &kw);
+        if (!st && !eol(&r.lx))
+            st = rf_lex_error(&r.lx, r.lx.tok.line, r.lx.tok.col, "too many values for %s",
+                              rf_lex_quote(&kw, q, sizeof q));
+    }
+    if (!st)
+        st = emit_faces(&r);
+    free(r.pos);
+    free(r.nrm);
+    free(r.corners);
+    free(r.faces);
+    return st;
+}
+
+RfStatus rf__obj_load(const char *path, const RfObjPlacement *pl, RfScene *scene, char *err,
+                      size_t errsz)
+{
+    char *text = NULL;
+    size_t len = 0;
+    RfStatus st = rf__reader_read_file(path, &text, &len, err, errsz);
+    if (st)
+        return st;
+    st = rf__obj_read(path, text, len, pl, scene, err, errsz);
+    free(text);
+    return st;
+}
+
+/* The default view of a bare OBJ file: the bounding sphere fills the vertical field of view,
+ * seen from +z a little above and to the right, with a headlight at the eye. */
+static RfStatus default_view(RfScene *scene, const char *name, char *err, size_t errsz)
+{
+    RfVec3 lo, hi;
+    if (!rf_scene_bounds(scene, &lo, &hi)) {
+        snprintf(err, errsz, "%s:1:1: the OBJ file has no faces", name);
+        return RF_ERR_PARSE;
+    }
+    RfVec3 c = rf_vec3_scale(rf_vec3_add(lo, hi), 0.5);
+    double radius = fmax(0.5 * rf_vec3_length(rf_vec3_sub(hi, lo)), 1e-9);
+    double fov = 40.0;
+    double dist = 1.05 * radius / sin(fov * (RF_PI / 360.0));
+    RfSceneCamera *cam = &scene->camera;
+    memset(cam, 0, sizeof *cam);
+    cam->eye = rf_vec3_add(c, rf_vec3_scale(rf_vec3_normalize(rf_vec3(0.35, 0.4, 1.0)), dist));
+    cam->target = c;
+    cam->up = rf_vec3(0, 1, 0);
+    cam->d = 1.0;
+    cam->fov = fov;
+    cam->fov_reading = RF_FOV_EDGES;
+    cam->loc.line = cam->loc.col = 1;
+    cam->target_loc = cam->up_loc = cam->loc;
+    scene->has_camera = 1;
+    RfLight l;
+    memset(&l, 0, sizeof l);
+    l.kind = RF_LIGHT_POINT;
+    l.falloff = RF_FALLOFF_NONE;
+    l.position = cam->eye;
+    l.intensity = rf_rgb(1, 1, 1);
+    l.loc = cam->loc;
+    if (rf_scene_add_light(scene, &l)) {
+        snprintf(err, errsz, "%s:1:1: out of memory", name);
+        return RF_ERR_NOMEM;
+    }
+    return RF_OK;
+}
+
+RfStatus rf_scene_read_obj(const char *name, const char *text, size_t len,
+                           const RfLoadOptions *opt, RfScene *scene, char *err, size_t errsz)
+{
+    RfLoadOptions def = rf_load_options_default();
+    RfObjPlacement pl;
+    if (!opt)
+        opt = &def;
+    pl.crease_deg = opt->crease_angle;
+    pl.material = -1;
+    pl.prim_flags = 0;
+    rf_scene_init(scene);
+    scene->format = RF_FORMAT_OBJ;
+    RfStatus st = rf__obj_read(name, text, len, &pl, scene, err, errsz);
+    if (!st)
+        st = default_view(scene, name, err, errsz);
+    if (!st)
+        st = rf_scene_validate(scene, name, err, errsz);
+    if (st)
+        rf_scene_free(scene);
+    return st;
+}
