@@ -44,8 +44,9 @@ static void usage(FILE *out)
     fprintf(out,
             "usage: refray render SCENE -o OUT.exr [--png OUT.png] [--width W] [--height H]\n"
             "                     [--samples N] [--depth D] [--threads N] [--local] [--seed S]\n"
-            "                     [--gamma G | --srgb] [--nff-fov centres|edges] [--quiet]\n"
-            "  SCENE      an .nff or .rf scene (docs/scene-format.md)\n"
+            "                     [--gamma G | --srgb] [--nff-fov centres|edges] [--depth-out D.exr]\n"
+            "                     [--quiet]\n"
+            "  SCENE      an .nff, .rf or .obj scene (docs/scene-format.md)\n"
             "  -o         linear OpenEXR output (float RGB, settings in the header)\n"
             "  --png      display PNG: gamma %.1f encoded (the script's §1.1.2), or --srgb\n"
             "  --local    primary rays and local Phong only (no shadows, reflection, refraction)\n"

@@ -12,12 +12,12 @@ typedef struct {
 } Command;
 
 static const Command commands[] = {
-    {"render", rf_cmd_render, "ray trace a scene (.nff, .rf) to a linear EXR and a PNG (§3)"},
+    {"render", rf_cmd_render, "ray trace a scene (.nff, .rf, .obj) to a linear EXR and a PNG (§3)"},
     {"formula", rf_cmd_formula, "compute a formula of the lecture script (list, ID key=value, --batch)"},
     {"chromaticity", rf_cmd_chromaticity, "draw the CIE 1931 xy chromaticity diagram (PNG/SVG, §1.5)"},
     {"metamers", rf_cmd_metamers, "two different spectra with the same XYZ and LMS (§1.3.1)"},
     {"diff", rf_cmd_diff, "compare two images (EXR/PNG): errors, silhouettes, heatmap; exits like idiff"},
-    {"info", rf_cmd_info, "load a scene (.nff, .rf): counts, materials, lights, features used"},
+    {"info", rf_cmd_info, "load a scene (.nff, .rf, .obj): counts, materials, lights, features used"},
 };
 
 static void usage(FILE *out)
@@ -25,7 +25,7 @@ static void usage(FILE *out)
     fprintf(out, "refray %s, a reference renderer for computer-graphics teaching\n\n"
                  "usage: refray COMMAND ...\n\ncommands:\n", RF_VERSION);
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-        fprintf(out, "  %-10s %s\n", commands[i].name, commands[i].summary);
+        fprintf(out, "  %-13s %s\n", commands[i].name, commands[i].summary);
     fprintf(out, "\n'refray COMMAND --help' tells more.\n");
 }
 
