@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../src/cli/args.h"
 #include "gl_context.h"
 #include "raster.h"
 #include "refray/scene_io.h"
@@ -25,15 +26,6 @@ static void usage(FILE *out)
             rf_gl_context_backend());
 }
 
-static int parse_int(const char *s, int *out)
-{
-    char *end;
-    long v = strtol(s, &end, 10);
-    if (*s == 0 || *end != 0 || v < 1 || v > 65536)
-        return 0;
-    *out = (int)v;
-    return 1;
-}
 
 int main(int argc, char **argv)
 {
@@ -43,7 +35,7 @@ int main(int argc, char **argv)
     RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int ok = 1;
+        int ok = 1, shared, used;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             usage(stdout);
             return 0;
@@ -54,9 +46,9 @@ int main(int argc, char **argv)
         } else if (strcmp(a, "--png") == 0 && v) {
             png = v, i++;
         } else if (strcmp(a, "--width") == 0 && v) {
-            ok = parse_int(v, &opt.width), i++;
+            ok = rf_arg_int(v, 1, 65536, &opt.width), i++;
         } else if (strcmp(a, "--height") == 0 && v) {
-            ok = parse_int(v, &opt.height), i++;
+            ok = rf_arg_int(v, 1, 65536, &opt.height), i++;
         } else if (strcmp(a, "--mode") == 0 && v) {
             i++;
             if (strcmp(v, "phong") == 0)
@@ -67,20 +59,8 @@ int main(int argc, char **argv)
                 opt.mode = RF_SHADE_FLAT;
             else
                 ok = 0;
-        } else if (strcmp(a, "--gamma") == 0 && v) {
-            char *end;
-            popt.gamma = strtod(v, &end), i++;
-            ok = *end == 0 && popt.gamma > 0.0 && popt.gamma < 10.0;
-        } else if (strcmp(a, "--srgb") == 0) {
-            popt.encoding = RF_PNG_SRGB;
-        } else if (strcmp(a, "--nff-fov") == 0 && v) {
-            i++;
-            if (strcmp(v, "centres") == 0 || strcmp(v, "centers") == 0)
-                lopt.nff_fov = RF_FOV_PIXEL_CENTRES;
-            else if (strcmp(v, "edges") == 0)
-                lopt.nff_fov = RF_FOV_EDGES;
-            else
-                ok = 0;
+        } else if ((shared = rf_arg_shared(a, v, &lopt, &popt, &used)) != 0) {
+            ok = shared > 0, i += used - 1;
         } else if (a[0] != '-' && !scene_path) {
             scene_path = a;
         } else {

@@ -1,6 +1,7 @@
 /* `refray diff`: compares two images (EXR or PNG) with the metrics of diff.h, optionally away from
  * silhouettes given depth images, writes heatmaps, and exits like OpenImageIO's idiff. */
 #include "cli.h"
+#include "args.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -36,15 +37,6 @@ static void usage(FILE *out)
             "exit: 0 pass, 1 warn, 2 fail, 3 size or channel mismatch, 4 file error, 5 usage error\n");
 }
 
-static int parse_double(const char *s, double *out)
-{
-    char *end;
-    double v = strtod(s, &end);
-    if (*s == 0 || *end != 0 || !(v >= 0.0))
-        return 0;
-    *out = v;
-    return 1;
-}
 
 static int is_png(const char *path)
 {
@@ -113,7 +105,7 @@ int rf_cmd_diff(int argc, char **argv)
     int set_warn = 0, set_mean = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int ok = 1;
+        int ok = 1, shared, used;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             usage(stdout);
             return 0;
@@ -126,24 +118,21 @@ int rf_cmd_diff(int argc, char **argv)
         } else if (strcmp(a, "--depth-b") == 0 && v) {
             pdb = v, i++;
         } else if (strcmp(a, "--warn") == 0 && v) {
-            ok = parse_double(v, &o.warn), set_warn = 1, i++;
+            ok = rf_arg_nonneg(v, &o.warn), set_warn = 1, i++;
         } else if (strcmp(a, "--warnpercent") == 0 && v) {
-            ok = parse_double(v, &o.warn_percent), i++;
+            ok = rf_arg_nonneg(v, &o.warn_percent), i++;
         } else if (strcmp(a, "--fail") == 0 && v) {
-            ok = parse_double(v, &o.fail), i++;
+            ok = rf_arg_nonneg(v, &o.fail), i++;
         } else if (strcmp(a, "--failpercent") == 0 && v) {
-            ok = parse_double(v, &o.fail_percent), i++;
+            ok = rf_arg_nonneg(v, &o.fail_percent), i++;
         } else if (strcmp(a, "--fail-mean") == 0 && v) {
-            ok = parse_double(v, &o.fail_mean), set_mean = 1, i++;
+            ok = rf_arg_nonneg(v, &o.fail_mean), set_mean = 1, i++;
         } else if (strcmp(a, "--hardfail") == 0 && v) {
-            ok = parse_double(v, &o.hardfail), i++;
+            ok = rf_arg_nonneg(v, &o.hardfail), i++;
         } else if (strcmp(a, "--depth-edge") == 0 && v) {
-            ok = parse_double(v, &o.depth_edge), i++;
-        } else if (strcmp(a, "--gamma") == 0 && v) {
-            popt.encoding = RF_PNG_GAMMA;
-            ok = parse_double(v, &popt.gamma) && popt.gamma > 0.0 && popt.gamma < 10.0, i++;
-        } else if (strcmp(a, "--srgb") == 0) {
-            popt.encoding = RF_PNG_SRGB;
+            ok = rf_arg_nonneg(v, &o.depth_edge), i++;
+        } else if ((shared = rf_arg_shared(a, v, NULL, &popt, &used)) != 0) {
+            ok = shared > 0, i += used - 1;
         } else if (strcmp(a, "--as-is") == 0) {
             popt.encoding = RF_PNG_AS_IS;
         } else if (strcmp(a, "--space") == 0 && v) {

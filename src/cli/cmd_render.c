@@ -1,5 +1,6 @@
 /* `refray render`: a scene to a linear EXR and a display PNG. */
 #include "cli.h"
+#include "args.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -81,15 +82,6 @@ static void show_progress(void *ctx, int done, int total)
     fflush(stderr);
 }
 
-static int parse_int(const char *s, int lo, int hi, int *out)
-{
-    char *end;
-    long v = strtol(s, &end, 10);
-    if (*s == 0 || *end != 0 || v < lo || v > hi)
-        return 0;
-    *out = (int)v;
-    return 1;
-}
 
 /* --depth-out: the comparator's silhouette mask needs the tracer's depth. One ray through each
  * pixel centre, from the hither plane as in rf_render; depth = t <dir, -w> (dir unit), the
@@ -127,7 +119,7 @@ int rf_cmd_render(int argc, char **argv)
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int ok = 1;
+        int ok = 1, shared, used;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             usage(stdout);
             return 0;
@@ -138,37 +130,25 @@ int rf_cmd_render(int argc, char **argv)
         } else if (strcmp(a, "--png") == 0 && v) {
             png = v, i++;
         } else if (strcmp(a, "--width") == 0 && v) {
-            ok = parse_int(v, 1, 65536, &opt.width), i++;
+            ok = rf_arg_int(v, 1, 65536, &opt.width), i++;
         } else if (strcmp(a, "--height") == 0 && v) {
-            ok = parse_int(v, 1, 65536, &opt.height), i++;
+            ok = rf_arg_int(v, 1, 65536, &opt.height), i++;
         } else if (strcmp(a, "--samples") == 0 && v) {
-            ok = parse_int(v, 1, 1 << 20, &opt.samples), i++;
+            ok = rf_arg_int(v, 1, 1 << 20, &opt.samples), i++;
         } else if (strcmp(a, "--depth") == 0 && v) {
-            ok = parse_int(v, 1, 1000, &opt.max_depth), i++;
+            ok = rf_arg_int(v, 1, 1000, &opt.max_depth), i++;
         } else if (strcmp(a, "--threads") == 0 && v) {
-            ok = parse_int(v, 1, 1024, &opt.threads), i++;
+            ok = rf_arg_int(v, 1, 1024, &opt.threads), i++;
         } else if (strcmp(a, "--seed") == 0 && v) {
             int s = 0;
-            ok = parse_int(v, 0, 2147483647, &s), i++;
+            ok = rf_arg_int(v, 0, 2147483647, &s), i++;
             opt.seed = (uint64_t)s;
-        } else if (strcmp(a, "--gamma") == 0 && v) {
-            char *end;
-            popt.gamma = strtod(v, &end), i++;
-            ok = *end == 0 && popt.gamma > 0.0 && popt.gamma < 10.0;
-        } else if (strcmp(a, "--srgb") == 0) {
-            popt.encoding = RF_PNG_SRGB;
+        } else if ((shared = rf_arg_shared(a, v, &lopt, &popt, &used)) != 0) {
+            ok = shared > 0, i += used - 1;
         } else if (strcmp(a, "--local") == 0) {
             opt.local_only = 1;
         } else if (strcmp(a, "--quiet") == 0) {
             quiet = 1;
-        } else if (strcmp(a, "--nff-fov") == 0 && v) {
-            i++;
-            if (strcmp(v, "centres") == 0 || strcmp(v, "centers") == 0)
-                lopt.nff_fov = RF_FOV_PIXEL_CENTRES;
-            else if (strcmp(v, "edges") == 0)
-                lopt.nff_fov = RF_FOV_EDGES;
-            else
-                ok = 0;
         } else if (a[0] != '-' && !scene_path) {
             scene_path = a;
         } else {

@@ -5,6 +5,14 @@
 #include "lexer.h"
 #include "refray/scene.h"
 
+/* printf into msg (when msg and msgsz) and return st: the plain messages of scene.c and
+ * scene_graph.c, which the readers prefix with a file position. */
+RfStatus rf__msgf(char *msg, size_t msgsz, RfStatus st, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
 /* Checks and appends a primitive; a failure is reported at p->loc. */
 RfStatus rf__reader_add_prim(RfLexer *lx, RfScene *scene, const RfPrimitive *p);
 /* Appends one vertex (and its normal when n != NULL); *first gets its index when first_too. */

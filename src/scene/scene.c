@@ -1,6 +1,7 @@
 /* refray: the scene model — allocation, the checks of every entity, and the feature analysis
  * (scene.h). */
 #include "refray/scene.h"
+#include "reader.h"
 #include "refray/numeric.h"
 #include "refray/transform.h"
 
@@ -12,12 +13,7 @@
 #include <string.h>
 
 
-static RfStatus msgf(char *msg, size_t msgsz, RfStatus st, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 4, 5)))
-#endif
-    ;
-static RfStatus msgf(char *msg, size_t msgsz, RfStatus st, const char *fmt, ...)
+RfStatus rf__msgf(char *msg, size_t msgsz, RfStatus st, const char *fmt, ...)
 {
     if (msg && msgsz) {
         va_list ap;
@@ -200,49 +196,49 @@ RfStatus rf_scene_check_primitive(const RfScene *scene, const RfPrimitive *p, ch
     if (p->type == RF_PRIM_INSTANCE) /* takes its materials from the object's primitives */
         return p->u.instance < scene->instance_count
                    ? RF_OK
-                   : msgf(msg, msgsz, RF_ERR_DOMAIN, "instance: index out of bounds");
+                   : rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "instance: index out of bounds");
     if (p->material < 0 || (size_t)p->material >= scene->material_count)
-        return msgf(msg, msgsz, RF_ERR_DOMAIN, "%s has no valid material", name);
+        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "%s has no valid material", name);
     switch (p->type) {
     case RF_PRIM_SPHERE:
         if (!finite3(p->u.sphere.center) || !isfinite(p->u.sphere.radius))
-            return msgf(msg, msgsz, RF_ERR_DOMAIN, "sphere: values must be finite");
+            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "sphere: values must be finite");
         if (!(p->u.sphere.radius > 0.0))
-            return msgf(msg, msgsz, RF_ERR_DEGENERATE,
+            return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE,
                         "degenerate sphere: radius must be > 0, found %g",
                         p->u.sphere.radius);
         return RF_OK;
     case RF_PRIM_PLANE:
         if (!finite3(p->u.plane.normal) || !isfinite(p->u.plane.offset))
-            return msgf(msg, msgsz, RF_ERR_DOMAIN, "plane: values must be finite");
+            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "plane: values must be finite");
         if (!(rf_vec3_length(p->u.plane.normal) > 0.0))
-            return msgf(msg, msgsz, RF_ERR_DEGENERATE, "degenerate plane: zero normal vector");
+            return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE, "degenerate plane: zero normal vector");
         return RF_OK;
     case RF_PRIM_TRIANGLE:
     case RF_PRIM_POLYGON: {
         int n = p->u.poly.count;
         if (n < 3 || (p->type == RF_PRIM_TRIANGLE && n != 3))
-            return msgf(msg, msgsz, RF_ERR_DEGENERATE, "%s needs %s3 vertices, found %d", name,
+            return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE, "%s needs %s3 vertices, found %d", name,
                         p->type == RF_PRIM_TRIANGLE ? "" : "at least ", n);
         if (p->u.poly.first > scene->vertex_count || (size_t)n > scene->vertex_count - p->u.poly.first)
-            return msgf(msg, msgsz, RF_ERR_DOMAIN, "%s: vertex range out of bounds", name);
+            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "%s: vertex range out of bounds", name);
         const RfVec3 *v = scene->vertices + p->u.poly.first;
         for (int i = 0; i < n; i++)
             if (!finite3(v[i]))
-                return msgf(msg, msgsz, RF_ERR_DOMAIN, "%s: vertex %d is not finite", name, i + 1);
+                return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "%s: vertex %d is not finite", name, i + 1);
         double ext2;
         RfVec3 nv = polygon_area_vector(v, n, &ext2);
         if (!(rf_vec3_length(nv) > RF_SCENE_DEGENERATE_REL * ext2))
-            return msgf(msg, msgsz, RF_ERR_DEGENERATE,
+            return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE,
                         "degenerate %s: its vertices are collinear (zero area)", name);
         if (p->flags & RF_PRIM_VERTEX_NORMALS) {
             if (p->u.poly.nfirst > scene->normal_count ||
                 (size_t)n > scene->normal_count - p->u.poly.nfirst)
-                return msgf(msg, msgsz, RF_ERR_DOMAIN, "%s: normal range out of bounds", name);
+                return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "%s: normal range out of bounds", name);
             const RfVec3 *vn = scene->normals + p->u.poly.nfirst;
             for (int i = 0; i < n; i++)
                 if (!finite3(vn[i]) || !(rf_vec3_length(vn[i]) > 0.0))
-                    return msgf(msg, msgsz, RF_ERR_DEGENERATE,
+                    return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE,
                                 "%s: normal of vertex %d has zero length", name, i + 1);
         }
         return RF_OK;
@@ -250,20 +246,20 @@ RfStatus rf_scene_check_primitive(const RfScene *scene, const RfPrimitive *p, ch
     case RF_PRIM_CONE: {
         double rb = p->u.cone.base_radius, ra = p->u.cone.apex_radius;
         if (!finite3(p->u.cone.base) || !finite3(p->u.cone.apex) || !isfinite(rb) || !isfinite(ra))
-            return msgf(msg, msgsz, RF_ERR_DOMAIN, "cone: values must be finite");
+            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "cone: values must be finite");
         if (rb < 0.0 || ra < 0.0)
-            return msgf(msg, msgsz, RF_ERR_DOMAIN, "cone radii must be >= 0");
+            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "cone radii must be >= 0");
         if (!(rf_vec3_length(rf_vec3_sub(p->u.cone.apex, p->u.cone.base)) > 0.0))
-            return msgf(msg, msgsz, RF_ERR_DEGENERATE, "degenerate cone: base and apex coincide");
+            return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE, "degenerate cone: base and apex coincide");
         if (!(rb > 0.0 || ra > 0.0))
-            return msgf(msg, msgsz, RF_ERR_DEGENERATE, "degenerate cone: both radii are zero");
+            return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE, "degenerate cone: both radii are zero");
         return RF_OK;
     }
     case RF_PRIM_INSTANCE:
     case RF_PRIM_TYPE_COUNT:
         break;
     }
-    return msgf(msg, msgsz, RF_ERR_DOMAIN, "unknown primitive type %d", (int)p->type);
+    return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "unknown primitive type %d", (int)p->type);
 }
 
 /* 0 when some corner turns against the polygon's normal: the SPD gears' faces are not convex
@@ -289,7 +285,7 @@ RfStatus rf_scene_add_primitive(RfScene *scene, const RfPrimitive *p, char *msg,
         return st;
     st = reserve((void **)&scene->prims, &scene->prim_cap, scene->prim_count, 1, sizeof *p);
     if (st)
-        return msgf(msg, msgsz, st, "out of memory");
+        return rf__msgf(msg, msgsz, st, "out of memory");
     RfPrimitive *q = &scene->prims[scene->prim_count++];
     *q = *p;
     q->flags &= ~(unsigned)RF_PRIM_NONCONVEX;
@@ -308,32 +304,32 @@ RfStatus rf_scene_camera_check(const RfSceneCamera *cam, RfSrcLoc *loc, char *ms
 {
     *loc = cam->loc;
     if (!finite3(cam->eye) || !finite3(cam->target) || !finite3(cam->up))
-        return msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: values must be finite");
+        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: values must be finite");
     RfVec3 dir = rf_vec3_sub(cam->target, cam->eye);
     double ld = rf_vec3_length(dir), lu = rf_vec3_length(cam->up);
     if (!(ld > 0.0)) {
         *loc = cam->target_loc;
-        return msgf(msg, msgsz, RF_ERR_DEGENERATE, "camera: eye and target coincide");
+        return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE, "camera: eye and target coincide");
     }
     if (!(lu > 0.0)) {
         *loc = cam->up_loc;
-        return msgf(msg, msgsz, RF_ERR_DEGENERATE, "camera: up vector has zero length");
+        return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE, "camera: up vector has zero length");
     }
     if (!(rf_vec3_length(rf_vec3_cross(dir, cam->up)) > RF_SCENE_DEGENERATE_REL * ld * lu)) {
         *loc = cam->up_loc;
-        return msgf(msg, msgsz, RF_ERR_DEGENERATE,
+        return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE,
                     "camera: up vector is parallel to the view direction");
     }
     if (!(cam->d > 0.0) || !isfinite(cam->d))
-        return msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: image-plane distance d must be > 0");
+        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: image-plane distance d must be > 0");
     if (!(cam->hither >= 0.0) || !isfinite(cam->hither))
-        return msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: hither must be >= 0");
+        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: hither must be >= 0");
     if (cam->has_window) {
         if (!isfinite(cam->l) || !isfinite(cam->r) || !isfinite(cam->b) || !isfinite(cam->t) ||
             !(cam->l < cam->r) || !(cam->b < cam->t))
-            return msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: window needs l < r and b < t");
+            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: window needs l < r and b < t");
     } else if (!(cam->fov > 0.0 && cam->fov < 180.0)) {
-        return msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: field of view must be in (0, 180) degrees");
+        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: field of view must be in (0, 180) degrees");
     }
     return RF_OK;
 }
@@ -362,12 +358,12 @@ RfWindow rf_scene_camera_window(const RfSceneCamera *cam, int width, int height)
 static RfStatus check_light(const RfLight *l, char *msg, size_t msgsz)
 {
     if (!finite3(l->position) || !finite3(l->direction) || !nonneg_rgb(l->intensity))
-        return msgf(msg, msgsz, RF_ERR_DOMAIN, "light: values must be finite, intensity >= 0");
+        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "light: values must be finite, intensity >= 0");
     if (l->kind != RF_LIGHT_POINT && !(rf_vec3_length(l->direction) > 0.0))
-        return msgf(msg, msgsz, RF_ERR_DEGENERATE, "light: direction has zero length");
+        return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE, "light: direction has zero length");
     if (l->kind == RF_LIGHT_SPOT && (!(l->spot_cutoff > 0.0 && l->spot_cutoff <= 90.0) ||
                                      !(l->spot_exponent >= 0.0) || !isfinite(l->spot_exponent)))
-        return msgf(msg, msgsz, RF_ERR_DOMAIN,
+        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN,
                     "spot light: cutoff must be in (0, 90] degrees, exponent >= 0");
     return RF_OK;
 }
@@ -377,9 +373,9 @@ static RfStatus check_material(const RfMaterial *m, char *msg, size_t msgsz)
     const RfRgb *c[] = {&m->ka, &m->kd, &m->ks, &m->kr, &m->kt, &m->emission};
     for (size_t i = 0; i < sizeof c / sizeof c[0]; i++)
         if (!nonneg_rgb(*c[i]))
-            return msgf(msg, msgsz, RF_ERR_DOMAIN, "material: coefficients must be finite, >= 0");
+            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "material: coefficients must be finite, >= 0");
     if (!(m->shininess >= 0.0) || !isfinite(m->shininess) || !(m->ior > 0.0) || !isfinite(m->ior))
-        return msgf(msg, msgsz, RF_ERR_DOMAIN, "material: needs shininess >= 0 and ior > 0");
+        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "material: needs shininess >= 0 and ior > 0");
     return RF_OK;
 }
 

@@ -9,23 +9,9 @@
 #include <string.h>
 
 #include "refray/scene.h"
+#include "reader.h"
 #include "refray/transform.h"
 
-static RfStatus msgf(char *msg, size_t msgsz, RfStatus st, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 4, 5)))
-#endif
-    ;
-static RfStatus msgf(char *msg, size_t msgsz, RfStatus st, const char *fmt, ...)
-{
-    if (msg && msgsz) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(msg, msgsz, fmt, ap);
-        va_end(ap);
-    }
-    return st;
-}
 
 /* ---- checks: names resolved, no cycle ------------------------------------------------------ */
 
@@ -84,7 +70,7 @@ RfStatus rf_scene_graph_check(const RfScene *scene, RfSrcLoc *loc, char *msg, si
         const RfSceneObject *ob = &scene->objects[o];
         if (ob->first > scene->prim_count || ob->count > scene->prim_count - ob->first) {
             *loc = ob->loc;
-            return msgf(msg, msgsz, RF_ERR_DOMAIN, "object '%s': primitive range out of bounds",
+            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "object '%s': primitive range out of bounds",
                         ob->name);
         }
     }
@@ -95,7 +81,7 @@ RfStatus rf_scene_graph_check(const RfScene *scene, RfSrcLoc *loc, char *msg, si
         int o = scene->instances[p->u.instance].object;
         if (o < 0 || (size_t)o >= scene->object_count) {
             *loc = p->loc;
-            return msgf(msg, msgsz, RF_ERR_DOMAIN, "instance of an unknown object");
+            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "instance of an unknown object");
         }
     }
     if (scene->object_count == 0)
@@ -113,7 +99,7 @@ RfStatus rf_scene_graph_check(const RfScene *scene, RfSrcLoc *loc, char *msg, si
         if (!cs.state[o])
             st = visit(&cs, (int)o);
     if (st == RF_ERR_NOMEM)
-        msgf(msg, msgsz, st, "out of memory");
+        rf__msgf(msg, msgsz, st, "out of memory");
     free(cs.state);
     free(cs.stack);
     return st;
@@ -287,7 +273,7 @@ static RfStatus emit(const RfScene *s, const RfPrimitive *p, const Xf *x, RfScen
     case RF_PRIM_SPHERE:
     case RF_PRIM_CONE:
         if (!x->similar)
-            return msgf(msg, msgsz, RF_ERR_DOMAIN,
+            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN,
                         "%s under a non-similarity transform (line %d) has no flat form",
                         rf_prim_type_name(p->type), p->loc.line);
         if (p->type == RF_PRIM_SPHERE) {
@@ -312,7 +298,7 @@ static RfStatus emit(const RfScene *s, const RfPrimitive *p, const Xf *x, RfScen
         int n = p->u.poly.count, vn = (p->flags & RF_PRIM_VERTEX_NORMALS) != 0;
         RfVec3 *v = malloc(2 * (size_t)n * sizeof *v);
         if (!v)
-            return msgf(msg, msgsz, RF_ERR_NOMEM, "out of memory");
+            return rf__msgf(msg, msgsz, RF_ERR_NOMEM, "out of memory");
         for (int k = 0; k < n; k++) {
             int src = x->mirror && k > 0 ? n - k : k; /* v0 first, then reversed */
             rf_transform_point(x->m, s->vertices[p->u.poly.first + (size_t)src], &v[k]);
@@ -323,11 +309,11 @@ static RfStatus emit(const RfScene *s, const RfPrimitive *p, const Xf *x, RfScen
                                             &q.u.poly.nfirst);
         free(v);
         if (st)
-            return msgf(msg, msgsz, st, "out of memory");
+            return rf__msgf(msg, msgsz, st, "out of memory");
         break;
     }
     case RF_PRIM_TYPE_COUNT:
-        return msgf(msg, msgsz, RF_ERR_DOMAIN, "unknown primitive type");
+        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "unknown primitive type");
     }
     return rf_scene_add_primitive(out, &q, msg, msgsz);
 }
@@ -346,7 +332,7 @@ RfStatus rf_scene_flatten(const RfScene *scene, RfScene *out, char *msg, size_t 
         st = rf_scene_add_light(out, &scene->lights[i]);
     if (st) {
         rf_scene_free(out);
-        return msgf(msg, msgsz, st, "out of memory");
+        return rf__msgf(msg, msgsz, st, "out of memory");
     }
     Xf id;
     id.m = rf_mat4_identity();
