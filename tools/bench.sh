@@ -44,3 +44,25 @@ for s in scenes/spd/*.nff scenes/spd/*.nff.gz; do
 done
 echo
 echo "reproduce a row: time $bin render SCENE -o out.exr --threads T [--samples N]"
+
+# The independent anchor on this machine: POV-Ray 3.7 on the same whitted scene
+# (scenes/bench/whitted.pov, from SCENES.md), timed the same way and diffed against refray.
+if command -v povray >/dev/null 2>&1; then
+    echo
+    : > "$tmp/wall"
+    i=0
+    while [ $i -lt "$runs" ]; do
+        s=$(date +%s.%N)
+        povray +Iscenes/bench/whitted.pov +O"$tmp/pov.exr" +FE +W640 +H480 -A -D +WT2 >/dev/null 2>&1
+        e=$(date +%s.%N)
+        awk -v s="$s" -v e="$e" "BEGIN {print e - s}" >> "$tmp/wall"
+        i=$((i + 1))
+    done
+    printf "%-28s %8.3f  (povray +Iscenes/bench/whitted.pov +FE +W640 +H480 -A +WT2)\n" \
+        "POV-Ray whitted 1spp 2thr" "$(median < "$tmp/wall")"
+    "$bin" render scenes/whitted.rf -o "$tmp/out.exr" --quiet
+    echo "refray against POV-Ray (POV-Ray writes half floats, ~5e-4 relative):"
+    "$bin" diff "$tmp/out.exr" "$tmp/pov.exr" --kv | grep -E '^all\.(max_abs|mean_abs|rmse|pct_above_255)=' | sed 's/^/  /' || true
+else
+    echo "(POV-Ray is not installed: apt-get install povray adds the independent anchor row)"
+fi
