@@ -2,11 +2,13 @@
 # a missing dependency runs tools/deps.sh, which installs the Debian packages as root or prints
 # the apt-get line to run.
 #
-#   make            build the library (build/librefray.a) and the command (build/refray)
+#   make            build the library (build/librefray.a) and the commands (build/refray,
+#                   build/refray-raster, build/refray-verify)
 #   make test       build and run every test; the last line is "N passed, N failed"
 #   make demo       renders the default scene (scenes/whitted.rf) to out/whitted.{exr,png}
 #   make bench      run times of the tracer on the canonical scenes (tools/bench.sh)
 #   make report     tracer vs. OpenGL rasterizer on every scene: report/index.html (docs/compare.md)
+#   make stress     the CGAL verifier over every ray class and scene (docs/verify.md)
 #   make install PREFIX=/usr/local
 #   make clean
 #   Options: BUILD=dir (default build), SAN=1 (AddressSanitizer + UBSan), OPT="-O2 -g", V=1
@@ -130,6 +132,7 @@ install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/refray
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/refray
 	install -m 755 $(RASTER) $(DESTDIR)$(PREFIX)/bin/refray-raster
+	install -m 755 $(VERIFY) $(DESTDIR)$(PREFIX)/bin/refray-verify
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/librefray.a
 	install -m 644 include/refray/*.h $(DESTDIR)$(PREFIX)/include/refray/
 
