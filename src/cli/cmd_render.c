@@ -166,10 +166,21 @@ int rf_cmd_render(int argc, char **argv)
     }
     char err[1024];
     RfScene scene;
+
     rf_scene_init(&scene);
     if (rf_scene_load(scene_path, &lopt, &scene, err, sizeof err) != RF_OK) {
         fprintf(stderr, "%s\n", err);
         return 1;
+    }
+    {
+        int w = opt.width > 0 ? opt.width : scene.render.width;
+        int h = opt.height > 0 ? opt.height : scene.render.height;
+        if ((double)w * (double)h > (double)RF_IMAGE_MAX_PIXELS) {
+            fprintf(stderr, "refray render: %d x %d pixels is more than the %zu an image may have\n", w,
+                    h, (size_t)RF_IMAGE_MAX_PIXELS);
+            rf_scene_free(&scene);
+            return 2;
+        }
     }
     Progress prog;
     prog.tty = !quiet && isatty(2);
