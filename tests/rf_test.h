@@ -6,6 +6,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 typedef struct {
     const char *name;
@@ -51,6 +52,15 @@ const char *rf_test_run(const char *cmd, int *exit_code);
         rf_test_checks++;                                                                    \
         if (rf_a_ != rf_b_)                                                                  \
             rf_test_fail(__FILE__, __LINE__, "%s = %ld, expected %ld", #a, rf_a_, rf_b_);    \
+    } while (0)
+
+#define RF_CHECK_STR(a, b)                                                                   \
+    do {                                                                                     \
+        const char *rf_sa_ = (a), *rf_sb_ = (b);                                             \
+        rf_test_checks++;                                                                    \
+        if (strcmp(rf_sa_, rf_sb_) != 0)                                                     \
+            rf_test_fail(__FILE__, __LINE__, "%s = \"%s\", expected \"%s\"", #a, rf_sa_,     \
+                         rf_sb_);                                                            \
     } while (0)
 
 #define RF_TEST_END {NULL, NULL}

@@ -12,15 +12,6 @@
 #include "refray/transform.h"
 #include "rf_test.h"
 
-#define CHECK_STR(a, b)                                                                      \
-    do {                                                                                     \
-        const char *rf_sa_ = (a), *rf_sb_ = (b);                                             \
-        rf_test_checks++;                                                                    \
-        if (strcmp(rf_sa_, rf_sb_) != 0)                                                     \
-            rf_test_fail(__FILE__, __LINE__, "%s = \"%s\", expected \"%s\"", #a, rf_sa_,     \
-                         rf_sb_);                                                            \
-    } while (0)
-
 static RfStatus read_obj(const char *text, RfScene *s, char *err, size_t errsz)
 {
     return rf_scene_read_obj("t.obj", text, strlen(text), NULL, s, err, errsz);
@@ -221,7 +212,7 @@ static void test_mtl_illum(void)
     RF_CHECK(m[7].kr.r == 0.5 && m[7].kt.r == 0.4 && m[7].ior == 1.5 && (m[7].flags & RF_MAT_FRESNEL));
     /* 8: ray tracing off: as 2; maps and Tr ignored */
     RF_CHECK(m[8].ks.r == 0.5 && m[8].kr.r == 0);
-    CHECK_STR(m[7].name, "m7");
+    RF_CHECK_STR(m[7].name, "m7");
     rf_scene_free(&s);
 }
 
@@ -289,7 +280,7 @@ static void test_mesh_errors(void)
             st = rf_scene_read_mtl("t.mtl", cases[i].text, strlen(cases[i].text), &s, err, sizeof err);
         }
         RF_CHECK(st != RF_OK);
-        CHECK_STR(err, cases[i].err);
+        RF_CHECK_STR(err, cases[i].err);
         rf_scene_free(&s);
     }
 }
@@ -511,8 +502,8 @@ static void test_mesh_statement(void)
         RF_CHECK_EQ_INT(s.objects[0].count, 2);
         RF_CHECK_EQ_INT(s.material_count, 2);
         RF_CHECK(s.prims[0].flags & RF_PRIM_IN_OBJECT);
-        CHECK_STR(s.materials[s.prims[0].material].name, "base"); /* before usemtl */
-        CHECK_STR(s.materials[s.prims[1].material].name, "shiny");
+        RF_CHECK_STR(s.materials[s.prims[0].material].name, "base"); /* before usemtl */
+        RF_CHECK_STR(s.materials[s.prims[1].material].name, "shiny");
         RF_CHECK(s.materials[1].kr.r == 0.5);
         RfTriangleCount tc = rf_scene_triangle_count(&s);
         RF_CHECK_EQ_INT(tc.stored, 2);

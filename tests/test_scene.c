@@ -10,15 +10,6 @@
 #include "refray/scene_io.h"
 #include "rf_test.h"
 
-#define CHECK_STR(a, b)                                                                      \
-    do {                                                                                     \
-        const char *rf_sa_ = (a), *rf_sb_ = (b);                                             \
-        rf_test_checks++;                                                                    \
-        if (strcmp(rf_sa_, rf_sb_) != 0)                                                     \
-            rf_test_fail(__FILE__, __LINE__, "%s = \"%s\", expected \"%s\"", #a, rf_sa_,     \
-                         rf_sb_);                                                            \
-    } while (0)
-
 #define CHECK_VEC(v, X, Y, Z)                                                                \
     do {                                                                                     \
         RF_CHECK_NEAR((v).x, X, 0, 0);                                                       \
@@ -331,7 +322,7 @@ static void t_rf_small(void)
      * it; the file below joins it to the material line instead. */
     RF_CHECK_EQ_INT(rf_scene_read_rf("t.rf", rf_small, strlen(rf_small), &s, err, sizeof err),
                     RF_ERR_PARSE);
-    CHECK_STR(err, "t.rf:10:3: unknown keyword 'ior'");
+    RF_CHECK_STR(err, "t.rf:10:3: unknown keyword 'ior'");
     char text[sizeof rf_small];
     snprintf(text, sizeof text, "%s", rf_small);
     char *nl = strstr(text, "0.6\n  ior");
@@ -367,7 +358,7 @@ static void t_rf_small(void)
     RF_CHECK_EQ_INT(s.material_count, 2);
     if (s.material_count == 2) {
         const RfMaterial *m = &s.materials[0];
-        CHECK_STR(m->name, "base");
+        RF_CHECK_STR(m->name, "base");
         CHECK_RGB(m->ka, 0.1, 0.1, 0.1);
         CHECK_RGB(m->kd, 0.5, 0.6, 0.7);
         CHECK_RGB(m->ks, 0.3, 0.3, 0.3);
@@ -516,7 +507,7 @@ static void t_errors(void)
                              : rf_scene_read_rf("t.rf", c->text, strlen(c->text), &s, err,
                                                 sizeof err);
         RF_CHECK(st != RF_OK);
-        CHECK_STR(err, c->expected);
+        RF_CHECK_STR(err, c->expected);
         /* a failed read leaves an empty scene that can be freed again */
         RF_CHECK(s.prim_count == 0 && s.prims == NULL && s.materials == NULL);
         rf_scene_free(&s);
@@ -524,7 +515,7 @@ static void t_errors(void)
     RfScene s;
     char err[512];
     RF_CHECK_EQ_INT(rf_scene_load("/nonexistent/missing.nff", NULL, &s, err, sizeof err), RF_ERR_IO);
-    CHECK_STR(err, "/nonexistent/missing.nff:1:1: cannot open: No such file or directory");
+    RF_CHECK_STR(err, "/nonexistent/missing.nff:1:1: cannot open: No such file or directory");
 }
 
 /* `refray info`: the analysis on stdout; a bad scene gives exactly one line on stderr and
@@ -551,7 +542,7 @@ static void t_info_cli(void)
     char expected[1200];
     snprintf(expected, sizeof expected, "%s:8:1: degenerate sphere: radius must be > 0, found 0\n",
              path);
-    CHECK_STR(out, expected);
+    RF_CHECK_STR(out, expected);
     remove_temp(path);
     snprintf(cmd, sizeof cmd, "%s info 2>/dev/null", rf_test_bin());
     rf_test_run(cmd, &code);
