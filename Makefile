@@ -11,11 +11,16 @@
 #   make stress     the CGAL verifier over every ray class and scene (docs/verify.md)
 #   make install PREFIX=/usr/local
 #   make clean
-#   Options: BUILD=dir (default build), SAN=1 (AddressSanitizer + UBSan), OPT="-O2 -g", V=1
+#   Options: BUILD=dir (default build), SAN=1 (AddressSanitizer + UBSan), OPT="-O2 -g",
+#            ARCH="-march=native" (ARCH= for the portable scalar build), V=1
 
 BUILD   ?= build
 PREFIX  ?= /usr/local
 OPT     ?= -O2 -g
+# the machine's vector unit (AVX for the BVH's node tests, SSE for its triangle filter) and its
+# correctly rounded FMA, without AVX-512 (valgrind cannot run it); -ffp-contract=off below keeps the compiler from fusing anything itself,
+# so the images are the same bits with or without it. ARCH= builds the portable scalar path.
+ARCH    ?= -march=native -mno-avx512f
 SAN     ?=
 # the Debian pkg-config modules the library links against (tools/deps.sh installs them)
 PKGS    := libcjson cairo fontconfig zlib libpng OpenEXR
@@ -23,10 +28,10 @@ PKGS    := libcjson cairo fontconfig zlib libpng OpenEXR
 comma := ,
 SANFLAGS := $(if $(SAN),-fsanitize=address$(comma)undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
 # -ffp-contract=off: results must not depend on the compiler fusing a*b+c (DESIGN.md)
-CFLAGS_ALL = -std=c99 -D_POSIX_C_SOURCE=200809L $(OPT) -Wall -Wextra -Wpedantic -Werror \
+CFLAGS_ALL = -std=c99 -D_POSIX_C_SOURCE=200809L $(OPT) $(ARCH) -Wall -Wextra -Wpedantic -Werror \
              -ffp-contract=off -pthread -Iinclude -I$(BUILD)/gen $(PKG_CFLAGS) $(SANFLAGS) $(CFLAGS)
 # the flags that decide numeric results, recorded in every EXR the renderer writes
-NUMERIC_FLAGS = -std=c99 $(OPT) -ffp-contract=off $(SANFLAGS) $(CFLAGS)
+NUMERIC_FLAGS = -std=c99 $(OPT) $(ARCH) -ffp-contract=off $(SANFLAGS) $(CFLAGS)
 LDFLAGS_ALL = -pthread $(SANFLAGS) $(LDFLAGS)
 LDLIBS_ALL  = $(PKG_LIBS) -lm $(LDLIBS)
 
@@ -35,7 +40,7 @@ LIB_SRC  := $(wildcard src/core/*.c src/color/*.c src/geom/*.c src/scene/*.c src
 CLI_SRC  := $(wildcard src/cli/*.c)
 TEST_SRC := $(wildcard tests/*.c)
 # the comparator (issue 5): OpenGL through OSMesa, linked into refray-raster and the tests only
-RASTER_SRC := $(filter-out compare/verify%,$(wildcard compare/*.c))
+RASTER_SRC := $(filter-out compare/verify% compare/mesh_bench.c,$(wildcard compare/*.c))
 RASTER_LIB_SRC := $(filter-out compare/raster_main.c,$(RASTER_SRC))
 OSMESA_LIBS = $(shell pkg-config --libs osmesa 2>/dev/null || echo -lOSMesa)
 obj = $(patsubst %.c,$(BUILD)/obj/%.o,$(1))
@@ -43,8 +48,14 @@ obj = $(patsubst %.c,$(BUILD)/obj/%.o,$(1))
 VERIFY_SRC := $(wildcard compare/verify*.cpp)
 cxxobj = $(patsubst %.cpp,$(BUILD)/obj/%.o,$(1))
 # -frounding-math: CGAL's interval filters switch the rounding mode (CGAL's own build sets it)
-CXXFLAGS_ALL = -std=c++17 $(OPT) -Wall -Wextra -Werror -ffp-contract=off -frounding-math -pthread \
+CXXFLAGS_ALL = -std=c++17 $(OPT) $(ARCH) -Wall -Wextra -Werror -ffp-contract=off -frounding-math -pthread \
                -Iinclude $(SANFLAGS) $(CXXFLAGS)
+
+# the mesh benchmark against Embree (issue 10, docs/performance.md): Embree's column only when
+# Debian's libembree-dev is installed; the bunny is made with CGAL (compare/make_mesh.cpp)
+EMBREE := $(if $(wildcard /usr/include/embree3/rtcore.h),1,)
+MESHBENCH := $(BUILD)/refray-mesh-bench
+MAKEMESH := $(BUILD)/refray-make-mesh
 
 LIB  := $(BUILD)/librefray.a
 BIN  := $(BUILD)/refray
@@ -95,6 +106,16 @@ $(RASTER): $(call obj,$(RASTER_SRC)) $(BUILD)/obj/src/cli/args.o $(LIB)
 	@$(if $(Q),echo "  LINK    $@")
 	$(Q)$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL) $(OSMESA_LIBS)
 
+$(MESHBENCH): compare/mesh_bench.c $(LIB) | $(BUILD)/gen/build_info.h
+	@mkdir -p $(dir $@)
+	@$(if $(Q),echo "  LINK    $@$(if $(EMBREE), (with Embree))")
+	$(Q)$(CC) $(CFLAGS_ALL) $(if $(EMBREE),-DRF_HAVE_EMBREE) $(LDFLAGS_ALL) -o $@ $< $(LIB) $(LDLIBS_ALL) $(if $(EMBREE),-lembree3)
+
+$(MAKEMESH): compare/make_mesh.cpp
+	@mkdir -p $(dir $@)
+	@$(if $(Q),echo "  CXX     $@")
+	$(Q)$(CXX) $(CXXFLAGS_ALL) -o $@ $< $(LDFLAGS_ALL) -lgmp -lmpfr
+
 $(BUILD)/obj/compare/%.o: compare/%.cpp
 	@mkdir -p $(dir $@)
 	@$(if $(Q),echo "  CXX     $<")
@@ -125,8 +146,8 @@ report: $(BIN) $(RASTER)
 demo: $(BIN)
 	@sh tools/demo.sh $(BIN)
 
-bench: $(BIN)
-	@sh tools/bench.sh $(BIN)
+bench: $(BIN) $(MESHBENCH) $(MAKEMESH)
+	@sh tools/bench.sh $(BIN) $(MESHBENCH) $(MAKEMESH)
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/refray

@@ -1,153 +1,240 @@
-/* The BVH against brute force: the same nearest hit and the same any-hit answer. */
+/* The BVH against brute force, ray by ray: the same nearest hit (same key, same t bit for bit)
+ * and the same occlusion answer, for triangles (tested by the BVH) mixed with spheres (tested by
+ * the caller), with the vector and the scalar kernels, on random scenes, degenerate ones and
+ * rays through shared edges. */
 #include <stdlib.h>
 
 #include "refray/bvh.h"
 #include "rf_test.h"
 
 typedef struct {
-    RfVec3 c;
-    double r;
-} Ball;
+    int n_tris, n_balls;
+    RfTriangle *tris;
+    int *sides;
+    RfSphere *balls;
+    long tests; /* caller's item tests */
+} Scene;
 
-typedef struct {
-    const Ball *balls;
-    long tests;
-} Ctx;
+static uint64_t key_of(int item) { return (uint64_t)item + 1; }
 
-/* a plain sphere test (the reference kernel lives in intersect.h; any exact test serves here,
- * since the BVH and brute force call the same one) */
-static int hit_ball(void *vctx, int prim, RfRay ray, double t_min, double *t_max)
+static int describe(void *ctx, int item, uint64_t *key, RfTriangle *tri, int *sides, uint32_t *user, RfAabb *box)
 {
-    Ctx *ctx = vctx;
-    const Ball *b = &ctx->balls[prim];
-    ctx->tests++;
-    RfVec3 oc = rf_vec3_sub(ray.origin, b->c);
-    double a = rf_vec3_dot(ray.dir, ray.dir), hb = rf_vec3_dot(ray.dir, oc);
-    double c = rf_vec3_dot(oc, oc) - b->r * b->r, disc = hb * hb - a * c;
-    if (disc < 0.0)
-        return 0;
-    double s = sqrt(disc), t = (-hb - s) / a;
-    if (!(t > t_min))
-        t = (-hb + s) / a;
-    if (t > t_min && t < *t_max) {
-        *t_max = t;
+    const Scene *s = ctx;
+    *key = key_of(item);
+    if (item < s->n_tris) {
+        *tri = s->tris[item];
+        *sides = s->sides[item];
+        *user = (uint32_t)item;
         return 1;
     }
+    const RfSphere *b = &s->balls[item - s->n_tris];
+    RfVec3 e = rf_vec3(b->radius, b->radius, b->radius);
+    box->lo = rf_vec3_sub(b->center, e);
+    box->hi = rf_vec3_add(b->center, e);
     return 0;
 }
 
-static int brute(Ctx *ctx, int n, RfRay ray, double t_min, double *t_max)
+static int ball_hit(void *ctx, uint64_t key, const RfBvhRay *r, double t_min, double t_max, int inclusive, double *t)
 {
-    int hit = -1;
-    for (int i = 0; i < n; i++)
-        if (hit_ball(ctx, i, ray, t_min, t_max))
-            hit = i;
-    return hit;
+    Scene *s = ctx;
+    RfHit h;
+    s->tests++;
+    int i = (int)(key - 1) - s->n_tris;
+    if (inclusive)
+        t_max = nextafter(t_max, HUGE_VAL);
+    if (!rf_intersect_sphere(r->wr.ray, s->balls[i], RF_SPHERE_STABLE, t_min, t_max, &h))
+        return 0;
+    *t = h.t;
+    return 1;
 }
 
-static void make_scene(RfTestRng *r, Ball *balls, RfAabb *boxes, int n, double spread, double rmax)
+/* The reference: every item, in key order, with the double kernels and the same rules. */
+static RfBvhHit brute_nearest(const Scene *s, RfRay ray, double t_min, double t_max, int *occluded)
 {
-    for (int i = 0; i < n; i++) {
-        balls[i].c = rf_vec3(rf_test_uniform(r, -spread, spread), rf_test_uniform(r, -spread, spread),
-                             rf_test_uniform(r, -spread, spread));
-        balls[i].r = rf_test_uniform(r, 0.01, rmax);
-        RfVec3 e = rf_vec3(balls[i].r, balls[i].r, balls[i].r);
-        boxes[i].lo = rf_vec3_sub(balls[i].c, e);
-        boxes[i].hi = rf_vec3_add(balls[i].c, e);
-    }
-}
-
-static void check_against_brute(const RfBvh *bvh, const Ball *balls, int n, RfTestRng *r, int rays)
-{
-    Ctx a = {balls, 0}, b = {balls, 0};
-    for (int i = 0; i < rays; i++) {
-        RfRay ray = rf_ray(rf_vec3(rf_test_uniform(r, -12, 12), rf_test_uniform(r, -12, 12), rf_test_uniform(r, -12, 12)),
-                           rf_vec3(rf_test_uniform(r, -1, 1), rf_test_uniform(r, -1, 1), rf_test_uniform(r, -1, 1)));
-        if (i % 7 == 0) /* axis-parallel rays: two direction components exactly 0 */
-            ray.dir = rf_vec3(0, 0, i % 2 ? 1 : -1);
-        double ta = HUGE_VAL, tb = HUGE_VAL;
-        int ha = rf_bvh_intersect(bvh, ray, 1e-9, &ta, hit_ball, &a, 0);
-        int hb = brute(&b, n, ray, 1e-9, &tb);
-        rf_test_checks++;
-        /* equal distances (coincident spheres) may resolve to either primitive */
-        if (ta != tb || (ha < 0) != (hb < 0)) {
-            rf_test_fail(__FILE__, __LINE__, "ray %d: bvh hit %d at %.17g, brute force %d at %.17g", i, ha, ta, hb, tb);
-            return;
+    RfBvhHit best = {t_max, 0, NULL, 0};
+    RfWatertightRay wr = rf_watertight_ray(ray);
+    *occluded = 0;
+    for (int i = 0; i < s->n_tris + s->n_balls; i++) {
+        double t;
+        RfHit h;
+        if (i < s->n_tris) {
+            if (!rf_intersect_triangle_watertight(&wr, s->tris[i], t_min, HUGE_VAL, &h))
+                continue;
+            t = h.t;
+            *occluded |= t < t_max;
+            if (s->sides[i] != RF_BVH_SEE_BOTH &&
+                (rf_vec3_dot(ray.dir, h.normal) < 0.0) != (s->sides[i] == RF_BVH_SEE_FRONT))
+                continue;
+        } else {
+            if (!rf_intersect_sphere(ray, s->balls[i - s->n_tris], RF_SPHERE_STABLE, t_min, HUGE_VAL, &h))
+                continue;
+            t = h.t;
+            *occluded |= t < t_max;
         }
-        double tc = HUGE_VAL;
-        int hc = rf_bvh_intersect(bvh, ray, 1e-9, &tc, hit_ball, &a, 1);
-        RF_CHECK((hc >= 0) == (hb >= 0));
+        if (t < best.t) { /* key order: an equal t later never wins */
+            best.t = t;
+            best.key = key_of(i);
+        }
     }
-    /* the tree must pay off: far fewer primitive tests than brute force on large scenes */
-    if (n >= 1000)
-        RF_CHECK(a.tests * 10 < b.tests);
+    return best;
+}
+
+static RfRay random_ray(RfTestRng *r, double spread)
+{
+    RfRay ray = rf_ray(rf_vec3(rf_test_uniform(r, -spread, spread), rf_test_uniform(r, -spread, spread),
+                               rf_test_uniform(r, -spread, spread)),
+                       rf_vec3(rf_test_uniform(r, -1, 1), rf_test_uniform(r, -1, 1), rf_test_uniform(r, -1, 1)));
+    return ray;
+}
+
+/* Checks rays against brute force with both kernels; returns the caller's tests made. */
+static void check_rays(Scene *s, const RfRay *rays, int n, double t_max, const char *what)
+{
+    for (int scalar = 0; scalar < 2; scalar++) {
+        RfBvh bvh;
+        RfBvhDesc d = {s->n_tris + s->n_balls, describe, s, 2, scalar};
+        RF_CHECK_EQ_INT(rf_bvh_build(&bvh, &d), RF_OK);
+        RF_CHECK(bvh.depth < 64);
+        int bad = 0;
+        for (int i = 0; i < n && !bad; i++) {
+            int occ;
+            RfBvhHit want = brute_nearest(s, rays[i], 0.0, t_max, &occ);
+            RfBvhRay br;
+            rf_bvh_ray_init(&bvh, rays[i], &br);
+            RfBvhHit got = {t_max, 0, NULL, 0};
+            rf_bvh_nearest(&bvh, &br, 0.0, &got, ball_hit, s);
+            int gocc = rf_bvh_occluded(&bvh, &br, 0.0, t_max, ball_hit, s);
+            rf_test_checks++;
+            if (got.key != want.key || (want.key && got.t != want.t) || gocc != occ) {
+                rf_test_fail(__FILE__, __LINE__, "%s (%s) ray %d: bvh key %llu t %.17g occluded %d, brute force key %llu t %.17g occluded %d",
+                             what, scalar ? "scalar" : "vector", i, (unsigned long long)got.key, got.t, gocc,
+                             (unsigned long long)want.key, want.t, occ);
+                bad = 1;
+            }
+            /* a triangle's user bits come back with it */
+            if (got.tri && got.user != (uint32_t)(got.key - 1))
+                rf_test_fail(__FILE__, __LINE__, "%s: user bits %u for key %llu", what, got.user, (unsigned long long)got.key);
+        }
+        rf_bvh_free(&bvh);
+    }
 }
 
 static void t_bvh_random(void)
 {
     RfTestRng r = {11};
-    enum { N = 5000 };
-    Ball *balls = malloc(sizeof *balls * N);
-    RfAabb *boxes = malloc(sizeof *boxes * N);
-    make_scene(&r, balls, boxes, N, 10, 0.3);
-    RfBvh bvh;
-    RF_CHECK_EQ_INT(rf_bvh_build(&bvh, boxes, N), RF_OK);
-    RF_CHECK(bvh.depth < 64);
-    /* every primitive appears exactly once in the leaves */
-    int *seen = calloc(N, sizeof *seen);
-    for (int i = 0; i < bvh.node_count; i++)
-        for (int k = 0; k < bvh.nodes[i].count; k++)
-            seen[bvh.prims[bvh.nodes[i].first + k]]++;
-    int once = 1;
-    for (int i = 0; i < N; i++)
-        once &= seen[i] == 1;
-    RF_CHECK(once);
-    check_against_brute(&bvh, balls, N, &r, 20000);
-    rf_bvh_free(&bvh);
-    free(seen);
-    free(balls);
-    free(boxes);
+    enum { NT = 3000, NB = 800, RAYS = 6000 };
+    Scene s = {NT, NB, malloc(sizeof(RfTriangle) * NT), malloc(sizeof(int) * NT), malloc(sizeof(RfSphere) * NB), 0};
+    for (int i = 0; i < NT; i++) {
+        RfVec3 c = rf_vec3(rf_test_uniform(&r, -10, 10), rf_test_uniform(&r, -10, 10), rf_test_uniform(&r, -10, 10));
+        RfVec3 *p[3] = {&s.tris[i].p1, &s.tris[i].p2, &s.tris[i].p3};
+        for (int k = 0; k < 3; k++)
+            *p[k] = rf_vec3_add(c, rf_vec3(rf_test_uniform(&r, -1, 1), rf_test_uniform(&r, -1, 1), rf_test_uniform(&r, -1, 1)));
+        s.sides[i] = i % 3;
+    }
+    for (int i = 0; i < NB; i++) {
+        s.balls[i].center = rf_vec3(rf_test_uniform(&r, -10, 10), rf_test_uniform(&r, -10, 10), rf_test_uniform(&r, -10, 10));
+        s.balls[i].radius = rf_test_uniform(&r, 0.01, 0.5);
+    }
+    RfRay *rays = malloc(sizeof *rays * RAYS);
+    for (int i = 0; i < RAYS; i++) {
+        rays[i] = random_ray(&r, 12);
+        if (i % 7 == 0) /* axis-parallel rays: two direction components exactly 0 */
+            rays[i].dir = rf_vec3(0, 0, i % 2 ? 1 : -1);
+    }
+    check_rays(&s, rays, RAYS, HUGE_VAL, "random");
+    check_rays(&s, rays, RAYS, 6.0, "random, t_max 6");
+    /* the tree must pay off: far fewer sphere tests than brute force would make */
+    RF_CHECK(s.tests < 2L * 2 * 3 * RAYS * NB / 10);
+    free(rays);
+    free(s.tris);
+    free(s.sides);
+    free(s.balls);
+}
+
+/* A grid of squares split into triangles, vertices on a dyadic grid (exact), rays aimed exactly
+ * at edges and vertices: both triangles of an edge are hit at the same t and the lower key wins,
+ * with the BVH as with brute force; far from the origin as well (the float filter's bound). */
+static void t_bvh_shared_edges(void)
+{
+    enum { N = 24 };
+    const double offsets[] = {0.0, 1e5, 3e7};
+    for (size_t o = 0; o < sizeof offsets / sizeof offsets[0]; o++) {
+        Scene s = {2 * N * N, 0, malloc(sizeof(RfTriangle) * 2 * N * N), malloc(sizeof(int) * 2 * N * N), NULL, 0};
+        double h = 0.125, off = offsets[o];
+        int t = 0;
+        for (int i = 0; i < N; i++)
+            for (int j = 0; j < N; j++) {
+                RfVec3 p00 = rf_vec3(off + i * h, off + j * h, off), p10 = rf_vec3(off + (i + 1) * h, off + j * h, off);
+                RfVec3 p01 = rf_vec3(off + i * h, off + (j + 1) * h, off), p11 = rf_vec3(off + (i + 1) * h, off + (j + 1) * h, off);
+                RfTriangle a = {p00, p10, p11}, b = {p00, p11, p01};
+                s.tris[t] = a;
+                s.sides[t++] = RF_BVH_SEE_BOTH;
+                s.tris[t] = b;
+                s.sides[t++] = RF_BVH_SEE_FRONT;
+            }
+        RfTestRng r = {13};
+        enum { RAYS = 3000 };
+        RfRay *rays = malloc(sizeof *rays * RAYS);
+        for (int i = 0; i < RAYS; i++) {
+            /* a grid point (a vertex) or an edge midpoint, from a random origin above or below */
+            int gi = (int)rf_test_uniform(&r, 1, N - 1), gj = (int)rf_test_uniform(&r, 1, N - 1);
+            RfVec3 aim = rf_vec3(off + gi * h + (i % 3 == 1 ? h / 2 : 0), off + gj * h + (i % 3 == 2 ? h / 2 : 0), off);
+            if (i % 3 == 0 && i % 2)
+                aim = rf_vec3(off + (gi + 0.5) * h, off + (gj + 0.5) * h, off); /* the diagonal */
+            RfVec3 from = rf_vec3(aim.x + rf_test_uniform(&r, -2, 2), aim.y + rf_test_uniform(&r, -2, 2),
+                                  off + (i % 4 == 0 ? -1.0 : 1.0) * rf_test_uniform(&r, 0.5, 3));
+            rays[i] = rf_ray(from, rf_vec3_sub(aim, from));
+        }
+        check_rays(&s, rays, RAYS, HUGE_VAL, offsets[o] == 0 ? "shared edges" : "shared edges far away");
+        free(rays);
+        free(s.tris);
+        free(s.sides);
+    }
 }
 
 static void t_bvh_degenerate(void)
 {
     RfTestRng r = {12};
     RfBvh bvh;
-    double t = HUGE_VAL;
     /* empty */
-    RF_CHECK_EQ_INT(rf_bvh_build(&bvh, NULL, 0), RF_OK);
-    RF_CHECK_EQ_INT(rf_bvh_intersect(&bvh, rf_ray(rf_vec3(0, 0, 0), rf_vec3(1, 0, 0)), 0, &t, hit_ball, NULL, 0), -1);
+    Scene e = {0, 0, NULL, NULL, NULL, 0};
+    RfBvhDesc d = {0, describe, &e, 1, 0};
+    RF_CHECK_EQ_INT(rf_bvh_build(&bvh, &d), RF_OK);
+    RfBvhRay br;
+    RfBvhHit best = {HUGE_VAL, 0, NULL, 0};
+    rf_bvh_ray_init(&bvh, rf_ray(rf_vec3(0, 0, 0), rf_vec3(1, 0, 0)), &br);
+    RF_CHECK_EQ_INT(rf_bvh_nearest(&bvh, &br, 0, &best, ball_hit, &e), 0);
     rf_bvh_free(&bvh);
-    /* 300 identical spheres: no SAH split exists; leaves must still stay bounded */
+    /* 300 identical spheres and 300 identical triangles: no SAH split exists */
     enum { N = 300 };
-    Ball balls[N];
-    RfAabb boxes[N];
+    Scene s = {N, N, malloc(sizeof(RfTriangle) * N), malloc(sizeof(int) * N), malloc(sizeof(RfSphere) * N), 0};
     for (int i = 0; i < N; i++) {
-        balls[i].c = rf_vec3(1, 2, 3);
-        balls[i].r = 0.5;
-        boxes[i].lo = rf_vec3(0.5, 1.5, 2.5);
-        boxes[i].hi = rf_vec3(1.5, 2.5, 3.5);
+        s.balls[i].center = rf_vec3(1, 2, 3);
+        s.balls[i].radius = 0.5;
+        RfTriangle t = {rf_vec3(0, 0, 0), rf_vec3(1, 0, 0), rf_vec3(0, 1, 0)};
+        s.tris[i] = t;
+        s.sides[i] = RF_BVH_SEE_BOTH;
     }
-    RF_CHECK_EQ_INT(rf_bvh_build(&bvh, boxes, N), RF_OK);
-    int max_leaf = 0;
-    for (int i = 0; i < bvh.node_count; i++)
-        max_leaf = bvh.nodes[i].count > max_leaf ? bvh.nodes[i].count : max_leaf;
-    RF_CHECK(max_leaf <= 8);
-    check_against_brute(&bvh, balls, N, &r, 2000);
-    rf_bvh_free(&bvh);
-    /* a flat box (zero thickness, like a triangle in the plane z = 0), hit by a ray along z */
-    RfAabb flat = {{-1, -1, 0}, {1, 1, 0}};
-    RF_CHECK(rf_aabb_hit(flat, rf_vec3(0.5, 0.5, 5), rf_vec3(1.0 / 0.0, 1.0 / 0.0, -1), 0, HUGE_VAL));
-    RF_CHECK(!rf_aabb_hit(flat, rf_vec3(1.5, 0.5, 5), rf_vec3(1.0 / 0.0, 1.0 / 0.0, -1), 0, HUGE_VAL));
-    /* origin exactly on a slab plane, ray parallel to it: 0 * inf = NaN must not cull */
-    RF_CHECK(rf_aabb_hit(flat, rf_vec3(-1, 0, 5), rf_vec3(1.0 / 0.0, 1.0 / 0.0, -1), 0, HUGE_VAL));
-    /* non-finite boxes are refused */
-    RfAabb bad = {{0, 0, 0}, {NAN, 1, 1}};
-    RF_CHECK_EQ_INT(rf_bvh_build(&bvh, &bad, 1), RF_ERR_DOMAIN);
+    RfRay rays[500];
+    for (int i = 0; i < 500; i++)
+        rays[i] = random_ray(&r, 4);
+    check_rays(&s, rays, 500, HUGE_VAL, "coincident items");
+    /* non-finite boxes and vertices are refused */
+    s.balls[7].radius = NAN;
+    RfBvhDesc bad = {2 * N, describe, &s, 1, 0};
+    RF_CHECK_EQ_INT(rf_bvh_build(&bvh, &bad), RF_ERR_DOMAIN);
+    RF_CHECK(bvh.nodes == NULL);
+    s.balls[7].radius = 0.5;
+    s.tris[5].p2.y = INFINITY;
+    RF_CHECK_EQ_INT(rf_bvh_build(&bvh, &bad), RF_ERR_DOMAIN);
+    free(s.tris);
+    free(s.sides);
+    free(s.balls);
 }
 
 const RfTest rf_tests_bvh[] = {
     {"bvh_random_vs_brute_force", t_bvh_random},
+    {"bvh_shared_edges_vs_brute_force", t_bvh_shared_edges},
     {"bvh_degenerate", t_bvh_degenerate},
     RF_TEST_END,
 };

@@ -22,8 +22,8 @@ bench() {
         "$bin" render "$scene" -o "$tmp/out.exr" "$@" 2> "$tmp/log"
         e=$(date +%s.%N)
         awk -v s="$s" -v e="$e" "BEGIN {print e - s}" >> "$tmp/wall"
-        sed -n 's/.* in \([0-9.]*\) s, \([0-9.]*\) Mrays\/s.*/\1/p' "$tmp/log" >> "$tmp/render"
-        sed -n 's/.* in \([0-9.]*\) s, \([0-9.]*\) Mrays\/s.*/\2/p' "$tmp/log" >> "$tmp/mrays"
+        sed -n 's/.* trace \([0-9.]*\) s, \([0-9.]*\) Mrays\/s.*/\1/p' "$tmp/log" >> "$tmp/render"
+        sed -n 's/.* trace \([0-9.]*\) s, \([0-9.]*\) Mrays\/s.*/\2/p' "$tmp/log" >> "$tmp/mrays"
         i=$((i + 1))
     done
     printf "%8.3f %8.3f %8.2f" "$(median < "$tmp/wall")" "$(median < "$tmp/render")" "$(median < "$tmp/mrays")"

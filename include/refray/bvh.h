@@ -1,13 +1,28 @@
-/* refray: a bounding volume hierarchy over primitives given by their bounding boxes.
- * Built top-down with the surface area heuristic over binned centroids (Wald 2007, "On fast
- * Construction of SAH-based Bounding Volume Hierarchies"), flattened depth-first (the left
- * child follows its parent), traversed front to back by the children's entry distances. Double precision throughout; the slab
- * test widens the far distance by 1 + 2 gamma(3) (Pharr, Jakob, Humphreys, PBR 4th ed., 6.8)
- * so that rounding never culls a box the ray really crosses. Deterministic: the same boxes give
- * the same tree. Boxes must be finite (unbounded primitives such as planes are the caller's). */
+/* refray: the acceleration structure of the tracer — a wide bounding volume hierarchy over
+ * triangles (intersected here, watertight) and other items (boxes, intersected by the caller).
+ *
+ * Build: binned surface area heuristic (Wald 2007, "On fast Construction of SAH-based Bounding
+ * Volume Hierarchies") over float boxes, top levels with parallel binning, then the subtrees on
+ * every core; the binary tree is collapsed into nodes of 8 children (the child of the largest
+ * area is opened first). The tree depends only on the items, never on the thread count.
+ *
+ * Exactness: speed comes from layout and from skipping work, never from a less exact decision.
+ *  - Node boxes are floats rounded outward from the items' double boxes, and the ray's float
+ *    slab test rounds every quantity toward "hit" (rf_bvh_ray_init), so no ray that touches a
+ *    box in exact arithmetic is culled.
+ *  - A leaf's triangles first pass a single-precision edge test, 4 at a time, that rejects a
+ *    triangle only when error bounds prove that the double-precision watertight test
+ *    (rf_watertight_t, §3.5.3) would reject it; the double test decides every candidate.
+ *  - Of two hits at the same t the lower item index wins, so the answer does not depend on the
+ *    tree, on the traversal order or on the code path (SIMD or scalar).
+ * docs/performance.md has the layout, the error bounds and the measurements. */
 #ifndef REFRAY_BVH_H
 #define REFRAY_BVH_H
 
+#include <stddef.h>
+#include <stdint.h>
+
+#include "refray/intersect.h"
 #include "refray/ray.h"
 #include "refray/status.h"
 #include "refray/vec.h"
@@ -25,10 +40,12 @@ static inline RfAabb rf_aabb_empty(void)
     b.hi = rf_vec3(-HUGE_VAL, -HUGE_VAL, -HUGE_VAL);
     return b;
 }
+static inline double rf_min_(double a, double b) { return b < a ? b : a; } /* NaN-free inputs */
+static inline double rf_max_(double a, double b) { return b > a ? b : a; }
 static inline RfAabb rf_aabb_union(RfAabb a, RfAabb b)
 {
-    a.lo = rf_vec3(fmin(a.lo.x, b.lo.x), fmin(a.lo.y, b.lo.y), fmin(a.lo.z, b.lo.z));
-    a.hi = rf_vec3(fmax(a.hi.x, b.hi.x), fmax(a.hi.y, b.hi.y), fmax(a.hi.z, b.hi.z));
+    a.lo = rf_vec3(rf_min_(a.lo.x, b.lo.x), rf_min_(a.lo.y, b.lo.y), rf_min_(a.lo.z, b.lo.z));
+    a.hi = rf_vec3(rf_max_(a.hi.x, b.hi.x), rf_max_(a.hi.y, b.hi.y), rf_max_(a.hi.z, b.hi.z));
     return a;
 }
 static inline RfAabb rf_aabb_add_point(RfAabb a, RfVec3 p)
@@ -37,50 +54,91 @@ static inline RfAabb rf_aabb_add_point(RfAabb a, RfVec3 p)
     b.lo = b.hi = p;
     return rf_aabb_union(a, b);
 }
+
 static inline RfVec3 rf_aabb_center(RfAabb a) { return rf_vec3_scale(rf_vec3_add(a.lo, a.hi), 0.5); }
-/* Surface area; 0 for an empty box. */
-static inline double rf_aabb_area(RfAabb a)
-{
-    RfVec3 d = rf_vec3_sub(a.hi, a.lo);
-    if (d.x < 0.0 || d.y < 0.0 || d.z < 0.0)
-        return 0.0;
-    return 2.0 * (d.x * d.y + d.y * d.z + d.z * d.x);
-}
+
+/* Which side of a triangle nearest-hit queries see (occlusion queries see both):
+ * the counter-clockwise side (p2 - p1) x (p3 - p1) is the front. */
+enum { RF_BVH_SEE_BOTH = 0, RF_BVH_SEE_FRONT = 1, RF_BVH_SEE_BACK = 2 };
 
 typedef struct {
-    RfAabb box;
-    int first; /* leaf: first position in RfBvh.prims; inner node: index of the right child */
-    int count; /* leaf: number of primitives (> 0); inner node: 0 */
-    int axis;  /* inner node: the split axis, for front-to-back order */
-} RfBvhNode;
+    int count; /* items 0 .. count-1 */
+    /* Item i: its key (>= 1, distinct: of two hits at the same t the lower key wins), and either
+     * 1 with *tri, *sides and *user (30 bits the caller gets back with a hit) for a triangle
+     * (tested by the BVH), or 0 with *box for any other item (tested by the caller's
+     * RfBvhItemFn). Boxes and vertices must be finite. Called once or twice per item, from
+     * several threads at once. */
+    int (*describe)(void *ctx, int item, uint64_t *key, RfTriangle *tri, int *sides, uint32_t *user,
+                    RfAabb *box);
+    void *ctx;
+    int threads; /* build threads, 0: every core */
+    int scalar;  /* 1: traverse with the scalar code (the vector code is the default where the
+                    compiler targets AVX/SSE2; both give the same answers) */
+} RfBvhDesc;
+
+typedef struct RfBvhNode RfBvhNode;         /* 8 children: float boxes, child references */
+typedef struct RfBvhTriBlock RfBvhTriBlock; /* 4 triangles: float and double vertices, keys */
 
 typedef struct {
     RfBvhNode *nodes;
     int node_count;
-    int *prims; /* primitive indices, leaves refer to ranges of this array */
-    int prim_count;
-    int depth;  /* the deepest leaf's depth (root = 1) */
+    RfBvhTriBlock *blocks;
+    int block_count;
+    uint64_t *others;  /* keys of the items tested by the caller, in leaf order */
+    int other_count;
+    int item_count, tri_count;
+    int depth;         /* levels of 8-wide nodes, root = 1 */
+    double vmax;       /* max |coordinate| of any triangle vertex (the filter's error scale) */
+    int scalar;
 } RfBvh;
 
-/* Builds the tree over n boxes (n >= 0). RF_ERR_DOMAIN for a box that is not finite,
- * RF_ERR_NOMEM. The bvh is zeroed on failure. */
-RfStatus rf_bvh_build(RfBvh *bvh, const RfAabb *boxes, int n);
+/* Builds the structure. RF_ERR_DOMAIN for a non-finite or inverted box or vertex,
+ * RF_ERR_NOMEM (also beyond 2^26 triangle blocks). The bvh is zeroed on failure. */
+RfStatus rf_bvh_build(RfBvh *bvh, const RfBvhDesc *desc);
 void rf_bvh_free(RfBvh *bvh);
+/* Bytes held by the built structure (nodes, triangle blocks, item keys). */
+size_t rf_bvh_bytes(const RfBvh *bvh);
 
-/* Tests primitive prim against the ray; returns 1 and lowers *t_max to the hit distance when
- * it is hit at a t in (t_min, *t_max). ctx is the caller's. */
-typedef int (*RfBvhPrimFn)(void *ctx, int prim, RfRay ray, double t_min, double *t_max);
+/* A ray prepared for one BVH: the watertight set-up (§3.5.3) and the float slab and filter
+ * constants, rounded so that both tests stay conservative. */
+typedef struct {
+    RfWatertightRay wr;
+    float org[2][3];   /* [0]: origin rounded for the near planes, [1]: for the far planes */
+    float inv[2][3];   /* 1/dir shrunk ([0], near) and grown ([1], far) by a few ulps */
+    int near_hi[3];    /* 1 where dir < 0: the near plane is the box's hi side */
+    float fo[3];       /* filter: the origin in float (nearest), permuted to kx, ky, kz */
+    float fsx, fsy;    /* filter: the shear in float */
+    float k1, k2, k3;  /* filter bound B = m (k1 + k2 m) + k3, m = max |ray-space coordinate| */
+    int filter;        /* 0: every triangle goes to the double test (coordinates out of range) */
+} RfBvhRay;
 
-/* The nearest hit in (t_min, *t_max) (any_hit = 0), or any hit (any_hit = 1, for shadow rays:
- * stops at the first). Returns the primitive index hit last (the nearest when any_hit = 0), or
- * -1; *t_max holds its distance. Of several primitives hit at exactly the same distance, the one
- * the traversal meets first wins (deterministic for a given tree). */
-int rf_bvh_intersect(const RfBvh *bvh, RfRay ray, double t_min, double *t_max, RfBvhPrimFn fn,
-                     void *ctx, int any_hit);
+void rf_bvh_ray_init(const RfBvh *bvh, RfRay ray, RfBvhRay *out);
 
-/* Whether the ray meets the box at some t in [t_min, t_max] (conservatively: never a false
- * miss). inv_dir = 1/dir per component. */
-int rf_aabb_hit(RfAabb box, RfVec3 origin, RfVec3 inv_dir, double t_min, double t_max);
+/* The caller's test of a non-triangle item: 1 and *t when the item is hit at t >= t_min with
+ * t < t_max, or t <= t_max when inclusive. The caller keeps what else it needs of the hit: a
+ * hit it reports is always the new nearest one. */
+typedef int (*RfBvhItemFn)(void *ctx, uint64_t key, const RfBvhRay *ray, double t_min, double t_max,
+                           int inclusive, double *t);
+
+/* The nearest hit so far: t and key. Start with key 0 for "none" (t is then an exclusive limit)
+ * or with a hit's key (a later hit at the same t must have a lower key). tri and user: the
+ * vertices and the describe()'s user bits when a triangle of the BVH is the nearest (tri NULL
+ * for the caller's items). */
+typedef struct {
+    double t;
+    uint64_t key;
+    const RfTriangle *tri;
+    uint32_t user;
+} RfBvhHit;
+
+/* Improves *best with the nearest hit at t >= t_min: a hit (t, key) wins when t < best->t or
+ * t == best->t and key < best->key. Triangles hidden by their `sides` do not count. Returns 1
+ * when best changed. */
+int rf_bvh_nearest(const RfBvh *bvh, const RfBvhRay *ray, double t_min, RfBvhHit *best,
+                   RfBvhItemFn fn, void *ctx);
+/* 1 when anything is hit at t_min <= t < t_max, seen from either side (shadow rays). */
+int rf_bvh_occluded(const RfBvh *bvh, const RfBvhRay *ray, double t_min, double t_max,
+                    RfBvhItemFn fn, void *ctx);
 
 #ifdef __cplusplus
 }

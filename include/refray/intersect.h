@@ -84,6 +84,12 @@ int rf_intersect_triangle(RfRay ray, RfTriangle tri, RfTriangleMethod method, do
                           double t_max, RfHit *hit);
 int rf_intersect_triangle_watertight(const RfWatertightRay *wr, RfTriangle tri, double t_min,
                                      double t_max, RfHit *hit);
+/* The watertight test's decision and distance alone (no range, no barycentrics, no normal):
+ * 1 and *t when the ray's line meets the triangle. rf_intersect_triangle_watertight gives the
+ * same t, bit for bit. */
+int rf_watertight_t(const RfWatertightRay *wr, const RfTriangle *tri, double *t);
+/* normalise((p2 - p1) x (p3 - p1)): the normal every triangle hit reports. */
+RfVec3 rf_triangle_unit_normal(const RfTriangle *tri);
 
 /* ---- NFF `c`: open cone or cylinder (no caps) between base and apex ---- */
 

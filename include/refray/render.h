@@ -16,6 +16,16 @@
 extern "C" {
 #endif
 
+/* How the tracer finds hits. Every choice gives the same answers, bit for bit: these exist to
+ * prove that (tests, `refray render --accel`) and to measure. */
+typedef struct {
+    int threads;     /* for building the BVH; 0: every core */
+    int scalar;      /* 1: the scalar BVH kernels instead of AVX/SSE */
+    int brute_force; /* 1: no BVH, every item tested against every ray (the reference) */
+} RfTracerOptions;
+
+RfTracerOptions rf_tracer_options_default(void);
+
 typedef struct {
     int width, height;   /* 0: the scene's */
     int max_depth;       /* 0: the scene's; the primary ray is depth 1 */
@@ -27,6 +37,7 @@ typedef struct {
     uint64_t seed;       /* of the counter-based random numbers (jitter) */
     double fixed_offset; /* 0: the self-intersection policy (rf_ray_offset_origin); > 0 replaces it
                             by this absolute offset: a planted bug for the verifier only */
+    RfTracerOptions accel; /* threads 0 there: the render's thread count */
     RfProgressFn progress; /* called after each tile (may be NULL) */
     void *progress_ctx;
 } RfRenderOptions;
@@ -38,6 +49,9 @@ typedef struct {
     uint64_t invalid_samples; /* samples whose radiance was NaN or Inf: counted, replaced by 0 */
     int width, height, samples, max_depth, threads;
     unsigned features;   /* rf_scene_features of the scene */
+    double build_seconds; /* preparing the tracer: items, BVH */
+    double trace_seconds; /* the rays */
+    size_t accel_bytes;  /* held by the tracer (rf_tracer_bytes) */
 } RfRenderStats;
 
 /* The prepared scene: acceleration structure and per-primitive data. Immutable once built, so
@@ -45,17 +59,25 @@ typedef struct {
 typedef struct RfTracer RfTracer;
 
 RfStatus rf_tracer_create(const RfScene *scene, RfTracer **out);
+RfStatus rf_tracer_create_opts(const RfScene *scene, const RfTracerOptions *opt, RfTracer **out);
 void rf_tracer_free(RfTracer *tracer);
+/* Bytes held by the tracer: BVH nodes, triangle blocks, item tables. */
+size_t rf_tracer_bytes(const RfTracer *tracer);
 
-/* The nearest hit along a ray (t in (t_min, t_max)); returns the primitive index or -1. */
+/* The nearest hit along a ray (t in [t_min, t_max)); returns the primitive index or -1. Of
+ * several primitives hit at the same t, the lowest primitive index wins (a convex polygon's fan
+ * triangles in order), whatever the BVH. */
 typedef struct {
     double t;
-    int prim;
+    int prim, material;
     RfVec3 point, normal;   /* geometric normal, unit, facing the side the ray came from */
     RfVec3 shading_normal;  /* interpolated (smooth materials) or = normal, same side */
     int front;              /* 1 when the ray hit the outward / counter-clockwise side */
 } RfSurfaceHit;
 int rf_tracer_intersect(const RfTracer *tracer, RfRay ray, double t_min, double t_max, RfSurfaceHit *hit);
+/* 1 when anything is hit at t in [t_min, t_max), seen from either side: a shadow ray's
+ * occlusion query (it stops at the first hit). */
+int rf_tracer_occluded(const RfTracer *tracer, RfRay ray, double t_min, double t_max);
 
 /* The self-intersection policy (numeric.h RF_RAY_OFFSET_REL): the hit point p moved off the
  * surface along the unit geometric normal n to the side dir leaves by. fixed_offset > 0 moves

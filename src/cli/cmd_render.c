@@ -168,6 +168,8 @@ int rf_cmd_render(int argc, char **argv)
     RfScene scene;
 
     rf_scene_init(&scene);
+    struct timespec load_start;
+    clock_gettime(CLOCK_MONOTONIC, &load_start);
     if (rf_scene_load(scene_path, &lopt, &scene, err, sizeof err) != RF_OK) {
         fprintf(stderr, "%s\n", err);
         return 1;
@@ -182,6 +184,7 @@ int rf_cmd_render(int argc, char **argv)
             return 2;
         }
     }
+    double load_secs = seconds_since(load_start);
     Progress prog;
     prog.tty = !quiet && isatty(2);
     clock_gettime(CLOCK_MONOTONIC, &prog.start);
@@ -206,15 +209,19 @@ int rf_cmd_render(int argc, char **argv)
     }
     int rc = 0;
     if (exr) {
-        char settings[256], timing[64], threads[32], cpu[256];
+        char settings[256], timing[64], threads[32], cpu[256], load_t[32], build_t[32], trace_t[32];
         cpu_model(cpu, sizeof cpu);
         snprintf(settings, sizeof settings, "%dx%d, %d spp, depth %d%s, seed %llu", st.width, st.height,
                  st.samples, st.max_depth, opt.local_only ? ", local only" : "", (unsigned long long)opt.seed);
         snprintf(timing, sizeof timing, "%.3f s", secs);
+        snprintf(load_t, sizeof load_t, "%.3f s", load_secs);
+        snprintf(build_t, sizeof build_t, "%.3f s", st.build_seconds);
+        snprintf(trace_t, sizeof trace_t, "%.3f s", st.trace_seconds);
         snprintf(threads, sizeof threads, "%d", st.threads);
         RfImageAttr attrs[] = {
             {"refray:version", RF_VERSION}, {"refray:scene", scene_path}, {"refray:settings", settings},
-            {"refray:renderTime", timing}, {"refray:threads", threads}, {"refray:compiler", RF_COMPILER},
+            {"refray:renderTime", timing}, {"refray:loadTime", load_t}, {"refray:buildTime", build_t},
+            {"refray:traceTime", trace_t}, {"refray:threads", threads}, {"refray:compiler", RF_COMPILER},
             {"refray:flags", RF_BUILD_FLAGS}, {"refray:cpu", cpu},
         };
         if (rf_exr_write(exr, &img, attrs, (int)(sizeof attrs / sizeof attrs[0]), err, sizeof err) != RF_OK) {
@@ -234,11 +241,13 @@ int rf_cmd_render(int argc, char **argv)
     rf_image_free(&img);
     if (!quiet) {
         unsigned long long rays = st.primary_rays + st.shadow_rays + st.secondary_rays;
-        fprintf(stderr, "refray render: %s %dx%d, %d spp: %llu rays (%llu primary, %llu shadow, %llu secondary) "
-                        "in %.3f s, %.2f Mrays/s, %d threads, %llu invalid samples\n",
+        fprintf(stderr, "refray render: %s %dx%d, %d spp: %llu rays (%llu primary, %llu shadow, %llu secondary); "
+                        "load %.3f s, build %.3f s, trace %.3f s, %.2f Mrays/s, %d threads, %llu invalid samples\n",
                 scene_path, st.width, st.height, st.samples, rays, (unsigned long long)st.primary_rays,
-                (unsigned long long)st.shadow_rays, (unsigned long long)st.secondary_rays, secs,
-                secs > 0 ? rays / secs * 1e-6 : 0.0, st.threads, (unsigned long long)st.invalid_samples);
+                (unsigned long long)st.shadow_rays, (unsigned long long)st.secondary_rays, load_secs,
+                st.build_seconds, st.trace_seconds,
+                st.trace_seconds > 0 ? rays / st.trace_seconds * 1e-6 : 0.0, st.threads,
+                (unsigned long long)st.invalid_samples);
     }
     return rc;
 }

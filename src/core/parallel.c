@@ -1,4 +1,4 @@
-/* Tile scheduling on POSIX threads (see include/refray/parallel.h). */
+/* Task and tile scheduling on POSIX threads (see include/refray/parallel.h). */
 #include "refray/parallel.h"
 
 #include <pthread.h>
@@ -6,8 +6,8 @@
 #include <unistd.h>
 
 typedef struct {
-    int width, height, tile, tiles_x, total;
-    RfTileFn fn;
+    int total;
+    RfTaskFn fn;
     RfProgressFn progress;
     void *ctx;
     pthread_mutex_t lock;
@@ -35,13 +35,7 @@ static void *work(void *arg)
         pthread_mutex_unlock(&p->lock);
         if (i >= p->total)
             break;
-        RfTile t;
-        t.index = i;
-        t.x0 = (i % p->tiles_x) * p->tile;
-        t.y0 = (i / p->tiles_x) * p->tile;
-        t.x1 = t.x0 + p->tile < p->width ? t.x0 + p->tile : p->width;
-        t.y1 = t.y0 + p->tile < p->height ? t.y0 + p->tile : p->height;
-        int rc = p->fn(p->ctx, t, w->thread);
+        int rc = p->fn(p->ctx, i, w->thread);
         pthread_mutex_lock(&p->lock);
         if (rc)
             p->failed = 1;
@@ -52,27 +46,28 @@ static void *work(void *arg)
     return NULL;
 }
 
-RfStatus rf_parallel_tiles(int width, int height, int tile_size, int threads, RfTileFn fn,
-                           RfProgressFn progress, void *ctx)
+RfStatus rf_parallel_for(int n, int threads, RfTaskFn fn, RfProgressFn progress, void *ctx)
 {
-    if (width <= 0 || height <= 0 || tile_size <= 0 || threads < 0)
+    if (n < 0 || threads < 0)
         return RF_ERR_DOMAIN;
     Pool p;
-    p.width = width;
-    p.height = height;
-    p.tile = tile_size;
-    p.tiles_x = (width + tile_size - 1) / tile_size;
-    p.total = p.tiles_x * ((height + tile_size - 1) / tile_size);
+    p.total = n;
     p.fn = fn;
     p.progress = progress;
     p.ctx = ctx;
     p.next = p.done = p.failed = 0;
     if (threads == 0)
         threads = rf_cpu_count();
-    if (threads > p.total)
-        threads = p.total;
+    if (threads > n)
+        threads = n;
     if (pthread_mutex_init(&p.lock, NULL) != 0)
         return RF_ERR_NOMEM;
+    if (threads <= 1) { /* no pool: the caller runs every task */
+        Worker self = {&p, 0};
+        work(&self);
+        pthread_mutex_destroy(&p.lock);
+        return p.failed ? RF_ERR_IO : RF_OK;
+    }
     Worker *workers = malloc(sizeof *workers * (size_t)threads);
     pthread_t *ids = malloc(sizeof *ids * (size_t)threads);
     RfStatus st = RF_OK;
@@ -98,4 +93,39 @@ RfStatus rf_parallel_tiles(int width, int height, int tile_size, int threads, Rf
     free(workers);
     free(ids);
     return st;
+}
+
+typedef struct {
+    int width, height, tile, tiles_x;
+    RfTileFn fn;
+    RfProgressFn progress;
+    void *ctx;
+} TileJob;
+
+static void tile_progress(void *ctx, int done, int total)
+{
+    const TileJob *j = ctx;
+    j->progress(j->ctx, done, total);
+}
+
+static int tile_task(void *ctx, int i, int thread)
+{
+    const TileJob *j = ctx;
+    RfTile t;
+    t.index = i;
+    t.x0 = (i % j->tiles_x) * j->tile;
+    t.y0 = (i / j->tiles_x) * j->tile;
+    t.x1 = t.x0 + j->tile < j->width ? t.x0 + j->tile : j->width;
+    t.y1 = t.y0 + j->tile < j->height ? t.y0 + j->tile : j->height;
+    return j->fn(j->ctx, t, thread);
+}
+
+RfStatus rf_parallel_tiles(int width, int height, int tile_size, int threads, RfTileFn fn,
+                           RfProgressFn progress, void *ctx)
+{
+    if (width <= 0 || height <= 0 || tile_size <= 0 || threads < 0)
+        return RF_ERR_DOMAIN;
+    TileJob j = {width, height, tile_size, (width + tile_size - 1) / tile_size, fn, progress, ctx};
+    int total = j.tiles_x * ((height + tile_size - 1) / tile_size);
+    return rf_parallel_for(total, threads, tile_task, progress ? tile_progress : NULL, &j);
 }

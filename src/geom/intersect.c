@@ -257,31 +257,48 @@ static double edge_function(double px, double py, double qx, double qy)
     return fma(px, qy, -a) - fma(py, qx, -b);
 }
 
-/* Two-sided: a hit when U, V, W are all >= 0 or all <= 0. A ray exactly through an edge or
- * vertex (a zero edge function) hits every triangle there; det = U + V + W = 0 (the ray in the
- * triangle's plane, or a degenerate triangle) misses. l1, l2, l3 = U, V, W / det. */
-int rf_intersect_triangle_watertight(const RfWatertightRay *w, RfTriangle tri, double t_min,
-                                     double t_max, RfHit *hit)
+/* The edge functions U, V, W of the sheared triangle, det = U + V + W and t = T / det. Two-sided:
+ * the line meets the triangle when U, V, W are all >= 0 or all <= 0; a ray exactly through an
+ * edge or vertex (a zero edge function) meets every triangle there; det = 0 (the ray in the
+ * triangle's plane, or a degenerate triangle) meets none. */
+static inline int watertight(const RfWatertightRay *w, const RfTriangle *tri, double e[3],
+                             double *det, double *t)
 {
-    RfVec3 a = rf_vec3_sub(tri.p1, w->ray.origin), b = rf_vec3_sub(tri.p2, w->ray.origin),
-           c = rf_vec3_sub(tri.p3, w->ray.origin);
+    RfVec3 a = rf_vec3_sub(tri->p1, w->ray.origin), b = rf_vec3_sub(tri->p2, w->ray.origin),
+           c = rf_vec3_sub(tri->p3, w->ray.origin);
     double az = comp(a, w->kz), bz = comp(b, w->kz), cz = comp(c, w->kz);
     double ax = comp(a, w->kx) - w->sx * az, ay = comp(a, w->ky) - w->sy * az;
     double bx = comp(b, w->kx) - w->sx * bz, by = comp(b, w->ky) - w->sy * bz;
     double cx = comp(c, w->kx) - w->sx * cz, cy = comp(c, w->ky) - w->sy * cz;
-    double u = edge_function(cx, cy, bx, by); /* edge p2 -> p3, weight of p1 */
-    double v = edge_function(ax, ay, cx, cy); /* edge p3 -> p1, weight of p2 */
-    double ww = edge_function(bx, by, ax, ay); /* edge p1 -> p2, weight of p3 */
-    if ((u < 0.0 || v < 0.0 || ww < 0.0) && (u > 0.0 || v > 0.0 || ww > 0.0))
+    e[0] = edge_function(cx, cy, bx, by); /* edge p2 -> p3, weight of p1 */
+    e[1] = edge_function(ax, ay, cx, cy); /* edge p3 -> p1, weight of p2 */
+    e[2] = edge_function(bx, by, ax, ay); /* edge p1 -> p2, weight of p3 */
+    if ((e[0] < 0.0 || e[1] < 0.0 || e[2] < 0.0) && (e[0] > 0.0 || e[1] > 0.0 || e[2] > 0.0))
         return 0;
-    double det = u + v + ww;
-    if (det == 0.0)
+    *det = e[0] + e[1] + e[2];
+    if (*det == 0.0)
         return 0;
-    double tt = u * (w->sz * az) + v * (w->sz * bz) + ww * (w->sz * cz);
-    double t = tt / det;
-    if (!in_range(t, t_min, t_max))
+    double tt = e[0] * (w->sz * az) + e[1] * (w->sz * bz) + e[2] * (w->sz * cz);
+    *t = tt / *det;
+    return 1;
+}
+
+int rf_watertight_t(const RfWatertightRay *w, const RfTriangle *tri, double *t)
+{
+    double e[3], det;
+    return watertight(w, tri, e, &det, t);
+}
+
+RfVec3 rf_triangle_unit_normal(const RfTriangle *tri) { return triangle_unit_normal(*tri); }
+
+/* l1, l2, l3 = U, V, W / det. */
+int rf_intersect_triangle_watertight(const RfWatertightRay *w, RfTriangle tri, double t_min,
+                                     double t_max, RfHit *hit)
+{
+    double e[3], det, t;
+    if (!watertight(w, &tri, e, &det, &t) || !in_range(t, t_min, t_max))
         return 0;
-    set_triangle_hit(hit, tri, t, u / det, v / det, ww / det);
+    set_triangle_hit(hit, tri, t, e[0] / det, e[1] / det, e[2] / det);
     return 1;
 }
 

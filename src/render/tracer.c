@@ -4,6 +4,7 @@
 #include <float.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "refray/bvh.h"
 #include "refray/camera.h"
@@ -14,24 +15,36 @@
 #include "refray/shading.h"
 #include "refray/transform.h"
 
-/* One thing the BVH holds: a primitive, or one fan triangle (sub >= 0) of a convex polygon
- * (triangle v0, v(sub+1), v(sub+2)). */
+/* One item of a level: a primitive, or one fan triangle (sub >= 0) of a convex polygon
+ * (triangle v0, v(sub+1), v(sub+2)); a triangle has sub = 0. Its key orders (prim, sub): of two
+ * hits at the same t the lower key wins, so the image does not depend on the BVH (DESIGN.md). */
 typedef struct {
     int prim, sub;
 } Item;
 
+static uint64_t item_key(Item it) { return ((uint64_t)(uint32_t)it.prim << 32) | (uint32_t)(it.sub + 2); }
+static Item key_item(uint64_t key)
+{
+    Item it = {(int)(key >> 32), (int)(uint32_t)key - 2};
+    return it;
+}
+
 /* The items of the world, or of one object in its own space (§4.8). */
 typedef struct {
     RfBvh bvh;
-    Item *items;       /* bounded items, indexed by the BVH */
+    Item *items;         /* every item of the level, in key order */
     int item_count;
-    int *planes;       /* unbounded primitives, tested for every ray */
-    int plane_count;
-    int state;         /* objects: 0 not built, 1 building, 2 built */
+    int *bvh_items;      /* the BVH's items: items[bvh_items[j]] */
+    int bvh_count;
+    RfAabb box;          /* of the bounded items (objects: for their instances' boxes) */
+    int *unbounded;      /* items tested for every ray: planes, instances of unbounded objects */
+    int unbounded_count;
+    int state;           /* objects: 0 not built, 1 building, 2 built */
 } Level;
 
 struct RfTracer {
     const RfScene *scene;
+    RfTracerOptions opt;
     Level world;
     Level *objects;    /* per RfScene.objects: one BVH each, shared by all its instances */
     RfVec3 *poly_normal; /* per primitive: unit normal of a non-convex polygon (Newell) */
@@ -54,6 +67,20 @@ static RfVec3 vertex(const RfScene *s, const RfPrimitive *p, int k)
     return s->vertices[p->u.poly.first + (size_t)k];
 }
 
+/* Items the BVH intersects itself: triangles and the fan triangles of convex polygons. */
+static int item_is_triangle(const RfScene *s, Item it)
+{
+    RfPrimType ty = s->prims[it.prim].type;
+    return it.sub >= 0 && (ty == RF_PRIM_TRIANGLE || ty == RF_PRIM_POLYGON);
+}
+
+static RfTriangle item_triangle(const RfScene *s, Item it)
+{
+    const RfPrimitive *p = &s->prims[it.prim];
+    RfTriangle tri = {vertex(s, p, 0), vertex(s, p, it.sub + 1), vertex(s, p, it.sub + 2)};
+    return tri;
+}
+
 /* sqrt(1 - a^2), padded by a few ulps against the rounding of a and of the root, so the box
  * stays conservative */
 static double disc_reach(double a) { return fmin(1.0, sqrt(fmax(0.0, 1.0 - a * a)) + 4.0 * DBL_EPSILON); }
@@ -71,14 +98,8 @@ static RfAabb item_box(const RfScene *s, Item it)
     }
     case RF_PRIM_TRIANGLE:
     case RF_PRIM_POLYGON:
-        if (it.sub >= 0) {
-            b = rf_aabb_add_point(b, vertex(s, p, 0));
-            b = rf_aabb_add_point(b, vertex(s, p, it.sub + 1));
-            b = rf_aabb_add_point(b, vertex(s, p, it.sub + 2));
-        } else {
-            for (int k = 0; k < p->u.poly.count; k++)
-                b = rf_aabb_add_point(b, vertex(s, p, k));
-        }
+        for (int k = 0; k < p->u.poly.count; k++)
+            b = rf_aabb_add_point(b, vertex(s, p, k));
         break;
     case RF_PRIM_CONE: {
         /* the box of the two end discs: a disc of radius r around c with unit axis a reaches
@@ -103,7 +124,8 @@ static void level_free(Level *lv)
 {
     rf_bvh_free(&lv->bvh);
     free(lv->items);
-    free(lv->planes);
+    free(lv->bvh_items);
+    free(lv->unbounded);
 }
 
 void rf_tracer_free(RfTracer *t)
@@ -127,11 +149,11 @@ static int instance_box(const RfTracer *t, const RfPrimitive *p, RfAabb *b)
 {
     const RfInstance *in = &t->scene->instances[p->u.instance];
     const Level *lv = &t->objects[in->object];
-    if (lv->plane_count > 0)
+    if (lv->unbounded_count > 0)
         return 0;
-    if (lv->bvh.node_count == 0)
+    if (lv->bvh_count == 0)
         return -1;
-    RfAabb ob = lv->bvh.nodes[0].box;
+    RfAabb ob = lv->box;
     *b = rf_aabb_empty();
     for (int c = 0; c < 8; c++) {
         RfVec3 k = rf_vec3(c & 1 ? ob.hi.x : ob.lo.x, c & 2 ? ob.hi.y : ob.lo.y, c & 4 ? ob.hi.z : ob.lo.z);
@@ -145,6 +167,43 @@ static int instance_box(const RfTracer *t, const RfPrimitive *p, RfAabb *b)
     b->lo = rf_vec3_sub(b->lo, pad);
     b->hi = rf_vec3_add(b->hi, pad);
     return 1;
+}
+
+typedef struct {
+    const RfTracer *tracer;
+    const Level *level;
+} Describe;
+
+/* The BVH's 30 user bits of a triangle: its material, and whether it interpolates vertex
+ * normals (§3.6.3), so that a hit needs no look-up in the scene's primitives. */
+#define USER_SMOOTH (1u << 29)
+#define USER_MATERIAL (USER_SMOOTH - 1)
+
+static int prim_smooth(const RfScene *s, const RfPrimitive *p)
+{
+    return (p->flags & RF_PRIM_VERTEX_NORMALS) && (s->materials[p->material].flags & RF_MAT_SMOOTH);
+}
+
+static int describe_item(void *ctx, int j, uint64_t *key, RfTriangle *tri, int *sides, uint32_t *user, RfAabb *box)
+{
+    const Describe *d = ctx;
+    const RfScene *s = d->tracer->scene;
+    Item it = d->level->items[d->level->bvh_items[j]];
+    const RfPrimitive *p = &s->prims[it.prim];
+    *key = item_key(it);
+    if (item_is_triangle(s, it)) {
+        *tri = item_triangle(s, it);
+        *sides = (p->flags & RF_PRIM_TWO_SIDED) ? RF_BVH_SEE_BOTH
+                 : (p->flags & RF_PRIM_INSIDE)  ? RF_BVH_SEE_BACK
+                                                : RF_BVH_SEE_FRONT;
+        *user = (uint32_t)p->material | (prim_smooth(s, p) ? USER_SMOOTH : 0u);
+        return 1;
+    }
+    if (p->type == RF_PRIM_INSTANCE)
+        instance_box(d->tracer, p, box);
+    else
+        *box = item_box(s, it);
+    return 0;
 }
 
 /* Items and BVH of prims[first, end): the world (objects' parts skipped) or one object. The
@@ -161,43 +220,43 @@ static RfStatus build_level(RfTracer *t, size_t first, size_t end, int world, Le
         if (p->type == RF_PRIM_INSTANCE &&
             (st = build_object(t, scene->instances[p->u.instance].object)) != RF_OK)
             return st;
-        if (p->type == RF_PRIM_POLYGON && !(p->flags & RF_PRIM_NONCONVEX))
-            n_items += (size_t)p->u.poly.count - 2;
-        else if (p->type != RF_PRIM_PLANE)
-            n_items++;
-        else
-            lv->plane_count++;
+        n_items += p->type == RF_PRIM_POLYGON && !(p->flags & RF_PRIM_NONCONVEX) ? (size_t)p->u.poly.count - 2 : 1;
     }
-    if (n_items > (size_t)INT32_MAX / 2)
+    if (n_items > (size_t)INT32_MAX / 2 || scene->material_count > USER_MATERIAL)
         return RF_ERR_NOMEM;
-    lv->items = malloc(sizeof *lv->items * (n_items ? n_items : 1));
-    lv->planes = malloc(sizeof *lv->planes * (n_items + (size_t)lv->plane_count + 1));
-    RfAabb *boxes = malloc(sizeof *boxes * (n_items ? n_items : 1));
-    if (!lv->items || !lv->planes || !boxes) {
-        free(boxes);
+    size_t cap = n_items ? n_items : 1;
+    lv->items = malloc(sizeof *lv->items * cap);
+    lv->bvh_items = malloc(sizeof *lv->bvh_items * cap);
+    lv->unbounded = malloc(sizeof *lv->unbounded * cap);
+    if (!lv->items || !lv->bvh_items || !lv->unbounded)
         return RF_ERR_NOMEM;
-    }
-    lv->plane_count = 0;
+    int bvh_count = 0;
+    lv->box = rf_aabb_empty();
     for (size_t i = first; i < end; i++) {
         const RfPrimitive *p = &scene->prims[i];
         Item it = {(int)i, -1};
         if (world && (p->flags & RF_PRIM_IN_OBJECT))
             continue;
+        int key = lv->item_count;
         if (p->type == RF_PRIM_INSTANCE) {
             RfAabb b;
             int bounded = instance_box(t, p, &b);
+            if (bounded < 0) /* an empty object: nothing to hit */
+                continue;
+            lv->items[lv->item_count++] = it;
             if (bounded > 0) {
-                boxes[lv->item_count] = b;
-                lv->items[lv->item_count++] = it;
-            } else if (bounded == 0) {
-                lv->planes[lv->plane_count++] = (int)i;
-            }
+                lv->bvh_items[bvh_count++] = key;
+                lv->box = rf_aabb_union(lv->box, b);
+            } else
+                lv->unbounded[lv->unbounded_count++] = key;
         } else if (p->type == RF_PRIM_PLANE) {
-            lv->planes[lv->plane_count++] = (int)i;
+            lv->items[lv->item_count++] = it;
+            lv->unbounded[lv->unbounded_count++] = key;
         } else if (p->type == RF_PRIM_POLYGON && !(p->flags & RF_PRIM_NONCONVEX)) {
+            lv->box = rf_aabb_union(lv->box, item_box(scene, it));
             for (int k = 0; k + 2 < p->u.poly.count; k++) {
                 it.sub = k;
-                boxes[lv->item_count] = item_box(scene, it);
+                lv->bvh_items[bvh_count++] = lv->item_count;
                 lv->items[lv->item_count++] = it;
             }
         } else {
@@ -211,13 +270,17 @@ static RfStatus build_level(RfTracer *t, size_t first, size_t end, int world, Le
                 }
                 t->poly_normal[i] = rf_vec3_normalize(n);
             }
-            boxes[lv->item_count] = item_box(scene, it);
+            lv->box = rf_aabb_union(lv->box, item_box(scene, it));
+            lv->bvh_items[bvh_count++] = key;
             lv->items[lv->item_count++] = it;
         }
     }
-    st = rf_bvh_build(&lv->bvh, boxes, lv->item_count);
-    free(boxes);
-    return st;
+    lv->bvh_count = bvh_count;
+    if (t->opt.brute_force)
+        return RF_OK;
+    Describe d = {t, lv};
+    RfBvhDesc desc = {bvh_count, describe_item, &d, t->opt.threads, t->opt.scalar};
+    return rf_bvh_build(&lv->bvh, &desc);
 }
 
 /* One object's level, built once however many instances place it (§4.8). */
@@ -237,13 +300,21 @@ static RfStatus build_object(RfTracer *t, int o)
     return st;
 }
 
-RfStatus rf_tracer_create(const RfScene *scene, RfTracer **out)
+RfTracerOptions rf_tracer_options_default(void)
+{
+    RfTracerOptions o;
+    memset(&o, 0, sizeof o);
+    return o;
+}
+
+RfStatus rf_tracer_create_opts(const RfScene *scene, const RfTracerOptions *opt, RfTracer **out)
 {
     RfTracer *t = calloc(1, sizeof *t);
     *out = NULL;
     if (!t)
         return RF_ERR_NOMEM;
     t->scene = scene;
+    t->opt = opt ? *opt : rf_tracer_options_default();
     t->poly_normal = calloc(scene->prim_count ? scene->prim_count : 1, sizeof *t->poly_normal);
     t->objects = calloc(scene->object_count ? scene->object_count : 1, sizeof *t->objects);
     RfStatus st = t->poly_normal && t->objects ? build_level(t, 0, scene->prim_count, 1, &t->world)
@@ -254,6 +325,22 @@ RfStatus rf_tracer_create(const RfScene *scene, RfTracer **out)
     }
     *out = t;
     return RF_OK;
+}
+
+RfStatus rf_tracer_create(const RfScene *scene, RfTracer **out)
+{
+    return rf_tracer_create_opts(scene, NULL, out);
+}
+
+size_t rf_tracer_bytes(const RfTracer *t)
+{
+    const Level *lv[2] = {&t->world, NULL};
+    size_t bytes = sizeof *t + sizeof *t->poly_normal * t->scene->prim_count;
+    for (size_t o = 0; o <= t->scene->object_count; o++) {
+        const Level *l = o == 0 ? lv[0] : &t->objects[o - 1];
+        bytes += rf_bvh_bytes(&l->bvh) + sizeof *l + (size_t)l->item_count * (sizeof *l->items + 2 * sizeof(int));
+    }
+    return bytes;
 }
 
 /* ---- intersection ---- */
@@ -278,77 +365,86 @@ static int inside_polygon(const RfScene *s, const RfPrimitive *p, RfVec3 n, RfVe
     return inside;
 }
 
+/* A nearest-hit (or, shadow = 1, any-hit) query through the levels. The details of the nearest
+ * hit so far that is not a BVH triangle (spheres, cones, planes, instances) are kept here as
+ * they are found; a triangle's are computed once, for the winner (trace_level). */
 typedef struct {
     const RfTracer *tracer;
-    const Level *level; /* the world or the object being searched */
-    RfWatertightRay wr;
-    int shadow;    /* shadow rays: every surface blocks, whichever side */
-    Item item;     /* the item hit last (inside instances: the object's primitive) */
-    RfHit hit;     /* hit.normal in the space of the query's ray */
-    int instanced; /* the hit is inside an instance: nmat takes its normals to this space */
+    int shadow;         /* any-hit: every surface blocks, whichever side */
+    Item item;          /* the item hit (inside instances: the object's primitive) */
+    int material;       /* its material */
+    int smooth;         /* it interpolates vertex normals */
+    RfHit hit;          /* hit.normal in the space of the query's ray */
+    int instanced;      /* the hit is inside an instance: nmat takes its normals to this space */
     RfMat3 nmat;
 } Query;
 
-static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, double *t_max);
+static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, double *t_lim, uint64_t *key_lim);
 
 /* §4.8/§4.9: the ray goes into object space by M^-1 without normalising its direction, so t
  * is the same in both spaces; the normal comes back by the inverse transpose (M^-1)^T. */
-static int hit_instance(Query *q, const RfPrimitive *p, RfRay ray, double t_min, double *t_max)
+static int hit_instance(Query *q, const RfPrimitive *p, RfRay ray, double t_min, double t_max, double *t)
 {
-    const RfTracer *t = q->tracer;
-    const RfInstance *in = &t->scene->instances[p->u.instance];
+    const RfTracer *tr = q->tracer;
+    const RfInstance *in = &tr->scene->instances[p->u.instance];
     RfRay r;
     if (rf_transform_point(in->to_object, ray.origin, &r.origin) != RF_OK)
         return 0;
     r.dir = rf_transform_direction(in->to_object, ray.dir);
     Query sub;
-    memset(&sub, 0, sizeof sub);
-    sub.tracer = t;
+    sub.tracer = tr;
     sub.shadow = q->shadow;
-    double tm = *t_max;
-    if (!trace_level(&t->objects[in->object], &sub, r, t_min, &tm))
+    sub.instanced = 0;
+    double tm = t_max;
+    uint64_t key = 0;
+    if (!trace_level(&tr->objects[in->object], &sub, r, t_min, &tm, &key))
         return 0;
+    if (q->shadow)
+        return *t = tm, 1;
     q->hit = sub.hit;
     q->hit.normal = rf_vec3_normalize(rf_mat3_mul_vec(in->normal_to_world, sub.hit.normal));
     q->item = sub.item;
+    q->material = sub.material;
+    q->smooth = sub.smooth;
     q->nmat = sub.instanced ? rf_mat3_mul(in->normal_to_world, sub.nmat) : in->normal_to_world;
     q->instanced = 1;
-    *t_max = sub.hit.t;
+    *t = tm;
     return 1;
 }
 
-/* Intersects one item; on a hit in [t_min, *t_max) lowers *t_max and keeps the hit. */
-static int hit_item(Query *q, Item it, RfRay ray, double t_min, double *t_max)
+/* Intersects one item with the double-precision kernels of §3.5 at t in [t_min, t_max); on a
+ * hit keeps its details in q and returns 1 with *t. */
+static int hit_item(Query *q, Item it, RfRay ray, double t_min, double t_max, double *t)
 {
     const RfScene *s = q->tracer->scene;
     const RfPrimitive *p = &s->prims[it.prim];
     RfHit h;
     int ok = 0;
     if (p->type == RF_PRIM_INSTANCE)
-        return hit_instance(q, p, ray, t_min, t_max);
+        return hit_instance(q, p, ray, t_min, t_max, t);
 again:
     switch (p->type) {
     case RF_PRIM_SPHERE: {
-        ok = rf_intersect_sphere(ray, p->u.sphere, RF_SPHERE_STABLE, t_min, *t_max, &h);
+        ok = rf_intersect_sphere(ray, p->u.sphere, RF_SPHERE_STABLE, t_min, t_max, &h);
         break;
     }
     case RF_PRIM_PLANE: {
-        ok = rf_intersect_plane(ray, p->u.plane, t_min, *t_max, &h);
+        ok = rf_intersect_plane(ray, p->u.plane, t_min, t_max, &h);
         break;
     }
     case RF_PRIM_TRIANGLE:
     case RF_PRIM_POLYGON:
         if (it.sub >= 0) {
-            RfTriangle tri = {vertex(s, p, 0), vertex(s, p, it.sub + 1), vertex(s, p, it.sub + 2)};
-            ok = rf_intersect_triangle_watertight(&q->wr, tri, t_min, *t_max, &h);
+            RfWatertightRay wr = rf_watertight_ray(ray);
+            ok = rf_intersect_triangle_watertight(&wr, item_triangle(s, it), t_min, t_max, &h);
         } else {
             RfVec3 n = q->tracer->poly_normal[it.prim];
             RfPlane pl = {n, rf_vec3_dot(n, vertex(s, p, 0))};
-            ok = rf_intersect_plane(ray, pl, t_min, *t_max, &h) && inside_polygon(s, p, n, rf_ray_at(ray, h.t));
+            ok = rf_intersect_plane(ray, pl, t_min, t_max, &h) && inside_polygon(s, p, n, rf_ray_at(ray, h.t));
         }
         break;
     case RF_PRIM_CONE: {
-        ok = rf_intersect_cone(ray, p->u.cone, t_min, *t_max, &h);
+        ok = rf_intersect_cone(ray, p->u.cone, t_min, t_max, &h);
         break;
     }
     default:
@@ -370,64 +466,119 @@ again:
             return 0;
         }
     }
-    *t_max = h.t;
     q->hit = h;
     q->item = it;
+    q->material = p->material;
+    q->smooth = it.sub >= 0 && prim_smooth(s, p);
     q->instanced = 0;
+    *t = h.t;
     return 1;
 }
 
-static int bvh_leaf(void *ctx, int index, RfRay ray, double t_min, double *t_max)
+/* Tests an item against the limit (t_lim, key_lim): a hit counts when it is nearer, or as near
+ * with a lower key (the tie rule; key_lim = 0: t < t_lim). */
+static int hit_key(Query *q, uint64_t key, RfRay ray, double t_min, double t_lim, uint64_t key_lim, double *t)
 {
-    Query *q = ctx;
-    return hit_item(q, q->level->items[index], ray, t_min, t_max);
+    double t_max = !q->shadow && key < key_lim ? nextafter(t_lim, HUGE_VAL) : t_lim;
+    return hit_item(q, key_item(key), ray, t_min, t_max, t);
 }
 
-/* The nearest (or, shadow = 1, any) hit in one level in [t_min, *t_max); returns 1 with
- * q->hit/q->item and lowers *t_max. */
-static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, double *t_max)
+/* The BVH's callback for the items it does not intersect itself. */
+static int bvh_item(void *ctx, uint64_t key, const RfBvhRay *r, double t_min, double t_max, int inclusive, double *t)
 {
+    return hit_item(ctx, key_item(key), r->wr.ray, t_min, inclusive ? nextafter(t_max, HUGE_VAL) : t_max, t);
+}
+
+/* The nearest (or, shadow = 1, any) hit in one level at t >= t_min within the limit
+ * (*t_lim, *key_lim) (hit_key's rule). Returns 1 with q->hit, q->item and the new limit. */
+static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, double *t_lim, uint64_t *key_lim)
+{
+    double bt = *t_lim;
+    uint64_t bk = *key_lim;
     int found = 0;
-    q->level = lv;
-    q->wr = rf_watertight_ray(ray);
-    for (int i = 0; i < lv->plane_count; i++) {
-        Item it = {lv->planes[i], -1};
-        if (hit_item(q, it, ray, t_min, t_max)) {
-            found = 1;
+    for (int u = 0; u < lv->unbounded_count; u++) {
+        uint64_t key = item_key(lv->items[lv->unbounded[u]]);
+        double t;
+        if (hit_key(q, key, ray, t_min, bt, bk, &t)) {
             if (q->shadow)
                 return 1;
+            bt = t, bk = key, found = 1;
         }
     }
-    if (rf_bvh_intersect(&lv->bvh, ray, t_min, t_max, bvh_leaf, q, q->shadow) >= 0)
-        found = 1;
-    return found;
+    const RfTriangle *tri_won = NULL;
+    RfBvhHit best = {bt, bk, NULL, 0};
+    RfBvhRay br;
+    if (q->tracer->opt.brute_force) {
+        /* every item, in key order, with the double kernels alone: the reference for the BVH */
+        for (int j = 0; j < lv->bvh_count; j++) {
+            uint64_t key = item_key(lv->items[lv->bvh_items[j]]);
+            double t;
+            if (hit_key(q, key, ray, t_min, bt, bk, &t)) {
+                if (q->shadow)
+                    return 1;
+                bt = t, bk = key, found = 1;
+            }
+        }
+    } else if (lv->bvh_count > 0) {
+        rf_bvh_ray_init(&lv->bvh, ray, &br);
+        if (q->shadow)
+            return rf_bvh_occluded(&lv->bvh, &br, t_min, bt, bvh_item, q);
+        best.t = bt;
+        best.key = bk;
+        if (rf_bvh_nearest(&lv->bvh, &br, t_min, &best, bvh_item, q)) {
+            bt = best.t;
+            bk = best.key;
+            found = 1;
+            tri_won = best.tri;
+        }
+    }
+    if (!found)
+        return 0;
+    if (tri_won) { /* the winner's barycentrics and normal: the same bits as the BVH's t */
+        rf_intersect_triangle_watertight(&br.wr, *tri_won, t_min, HUGE_VAL, &q->hit);
+        q->item = key_item(bk);
+        q->material = (int)(best.user & USER_MATERIAL);
+        q->smooth = (best.user & USER_SMOOTH) != 0;
+        q->instanced = 0;
+    }
+    *t_lim = bt;
+    *key_lim = bk;
+    return 1;
 }
 
 /* The nearest (or, shadow = 1, any) hit in [t_min, t_max); returns 1 with q->hit/q->item. */
 static int trace_query(const RfTracer *t, Query *q, RfRay ray, double t_min, double t_max)
 {
+    uint64_t key = 0;
     q->tracer = t;
-    return trace_level(&t->world, q, ray, t_min, &t_max);
+    q->instanced = 0;
+    return trace_level(&t->world, q, ray, t_min, &t_max, &key);
+}
+
+int rf_tracer_occluded(const RfTracer *t, RfRay ray, double t_min, double t_max)
+{
+    Query q;
+    q.shadow = 1;
+    return trace_query(t, &q, ray, t_min, t_max);
 }
 
 int rf_tracer_intersect(const RfTracer *t, RfRay ray, double t_min, double t_max, RfSurfaceHit *out)
 {
     Query q;
-    memset(&q, 0, sizeof q);
+    q.shadow = 0;
     if (!trace_query(t, &q, ray, t_min, t_max))
         return -1;
     const RfScene *s = t->scene;
-    const RfPrimitive *p = &s->prims[q.item.prim];
     out->t = q.hit.t;
     out->prim = q.item.prim;
+    out->material = q.material;
     out->point = rf_ray_at(ray, q.hit.t);
     out->front = rf_vec3_dot(ray.dir, q.hit.normal) < 0.0;
     out->normal = out->front ? q.hit.normal : rf_vec3_neg(q.hit.normal);
     out->shading_normal = out->normal;
-    const RfMaterial *m = &s->materials[p->material];
-    if ((p->flags & RF_PRIM_VERTEX_NORMALS) && (m->flags & RF_MAT_SMOOTH) && q.item.sub >= 0) {
+    if (q.smooth) {
         /* §3.6.3 Phong shading: interpolate the vertex normals with the barycentric coordinates */
-        const RfVec3 *nv = s->normals + p->u.poly.nfirst;
+        const RfVec3 *nv = s->normals + s->prims[q.item.prim].u.poly.nfirst;
         RfVec3 n;
         if (rf_interpolate_normal(nv[0], nv[q.item.sub + 1], nv[q.item.sub + 2], q.hit.l[0], q.hit.l[1],
                                   q.hit.l[2], &n) == RF_OK) {
@@ -495,7 +646,7 @@ static RfRgb trace(const Job *job, RfRay ray, double t_min, int depth, double we
     RfSurfaceHit h;
     if (rf_tracer_intersect(t, ray, t_min, HUGE_VAL, &h) < 0)
         return job->background;
-    const RfMaterial *m = &s->materials[s->prims[h.prim].material];
+    const RfMaterial *m = &s->materials[h.material];
     RfVec3 v = rf_vec3_neg(rf_vec3_normalize(ray.dir));
     RfVec3 n = h.shading_normal;
     RfRgb kd = (m->kd), ks = (m->ks), zero = rf_rgb(0, 0, 0);
@@ -513,11 +664,8 @@ static RfRgb trace(const Job *job, RfRay ray, double t_min, int depth, double we
             double dist = isinf(ls.distance) ? HUGE_VAL
                                              : rf_vec3_length(rf_vec3_sub(rf_vec3_add(h.point,
                                                    rf_vec3_scale(ls.l, ls.distance)), sr.origin));
-            Query q;
-            memset(&q, 0, sizeof q);
-            q.shadow = 1;
             st->shadow_rays++;
-            if (trace_query(t, &q, sr, 0.0, dist))
+            if (rf_tracer_occluded(t, sr, 0.0, dist))
                 continue;
         }
         RfPhong ph = rf_phong(n, ls.l, v, zero, kd, ks, m->shininess, ls.i);
@@ -579,6 +727,11 @@ static void sample_offset(int n, int k, uint64_t pixel, uint64_t seed, double *s
         *sx = u;
         *sy = v;
     }
+}
+
+static double seconds_between(struct timespec a, struct timespec b)
+{
+    return (double)(b.tv_sec - a.tv_sec) + 1e-9 * (double)(b.tv_nsec - a.tv_nsec);
 }
 
 static int render_tile(void *ctx, RfTile tile, int thread)
@@ -647,15 +800,25 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     if (!job.per_thread)
         return RF_ERR_NOMEM;
     RfTracer *tracer = NULL;
-    st = rf_tracer_create(scene, &tracer);
+    RfTracerOptions topt = opt->accel;
+    if (topt.threads <= 0)
+        topt.threads = threads;
+    struct timespec t0, t1, t2;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    st = rf_tracer_create_opts(scene, &topt, &tracer);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
     if (st == RF_OK)
         st = rf_image_alloc(img, job.width, job.height, 3);
     if (st == RF_OK) {
+        stats->accel_bytes = rf_tracer_bytes(tracer);
         job.tracer = tracer;
         job.img = img;
         st = rf_parallel_tiles(job.width, job.height, 16, threads, render_tile,
                                opt->progress ? job_progress : NULL, &job);
     }
+    clock_gettime(CLOCK_MONOTONIC, &t2);
+    stats->build_seconds = seconds_between(t0, t1);
+    stats->trace_seconds = seconds_between(t1, t2);
     for (int i = 0; i < threads; i++) {
         stats->primary_rays += job.per_thread[i].primary_rays;
         stats->shadow_rays += job.per_thread[i].shadow_rays;

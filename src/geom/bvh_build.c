@@ -1,0 +1,752 @@
+/* The BVH's build (refray/bvh.h): references in float boxes rounded outward, binned SAH with
+ * the top levels binned on every thread and the subtrees built on every thread, the binary
+ * tree collapsed to 8-wide nodes, triangle blocks filled on every thread. */
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bvh_layout.h"
+#include "refray/parallel.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#define RF_BVH_SSE 1
+#endif
+
+#define BINS 32          /* centroid bins per split (Wald 2007 uses 16 or 32) */
+#define MAX_LEAF 8       /* items in a leaf (two triangle blocks) */
+#define SAH_DEPTH 32     /* deeper, splits halve the range: depth stays below 64 */
+#define COST_NODE 1.0f   /* SAH cost of a node visit, in triangle blocks */
+#define COST_OTHER 1.0f  /* SAH cost of an item tested by the caller, in triangle blocks */
+#define PAR_BIN 65536    /* ranges at least this long are binned on every thread */
+#define TASK_MIN 4096    /* the top levels are split until subtrees are this small ... */
+#define TASKS_PER_THREAD 8 /* ... or there are about this many per thread */
+
+static float fminf_(float a, float b) { return b < a ? b : a; }
+static float fmaxf_(float a, float b) { return b > a ? b : a; }
+
+/* ---- build: primitive references and bins ----------------------------------------------- */
+
+typedef struct { float lo[4], hi[4]; } Ref; /* lane 3 is 0; the item lives in ids[] */
+typedef struct { float lo[4], hi[4]; } Box4;
+typedef struct { Box4 box; int32_t a, b; } BNode; /* inner: children a, b; leaf: a = -1 - first, b = count */
+
+static Box4 box4_empty(void)
+{
+    Box4 b;
+    for (int k = 0; k < 4; k++) {
+        b.lo[k] = INFINITY;
+        b.hi[k] = -INFINITY;
+    }
+    b.lo[3] = b.hi[3] = 0.0f;
+    return b;
+}
+static void box4_grow(Box4 *b, const float lo[4], const float hi[4])
+{
+    for (int k = 0; k < 3; k++) {
+        b->lo[k] = fminf_(b->lo[k], lo[k]);
+        b->hi[k] = fmaxf_(b->hi[k], hi[k]);
+    }
+}
+static float box4_area(const Box4 *b)
+{
+    float dx = b->hi[0] - b->lo[0], dy = b->hi[1] - b->lo[1], dz = b->hi[2] - b->lo[2];
+    if (!(dx >= 0.0f && dy >= 0.0f && dz >= 0.0f))
+        return 0.0f;
+    return dx * dy + dy * dz + dz * dx; /* half the area: only ratios matter */
+}
+
+typedef struct {
+    Box4 box[3][BINS];
+    int n[3][BINS], nt[3][BINS]; /* items and triangles per bin */
+} Bins;
+
+/* The bin of a centroid (lo + hi, twice the centre) along each axis; the build and the
+ * partition call the same routine, so they agree bit for bit. */
+typedef struct { float cmin[4], scale[4]; } Binner;
+
+static inline void bin_of(const Binner *bn, const Ref *r, int k[3])
+{
+    for (int a = 0; a < 3; a++) {
+        float f = (r->lo[a] + r->hi[a] - bn->cmin[a]) * bn->scale[a];
+        f = f < 0.0f ? 0.0f : f > (float)(BINS - 1) ? (float)(BINS - 1) : f;
+        k[a] = (int)f;
+    }
+}
+
+static void bins_clear(Bins *b)
+{
+    for (int a = 0; a < 3; a++)
+        for (int k = 0; k < BINS; k++) {
+            b->box[a][k] = box4_empty();
+            b->n[a][k] = b->nt[a][k] = 0;
+        }
+}
+
+static void bin_range(const Ref *refs, const int32_t *ids, int first, int end, const Binner *bn, Bins *b)
+{
+    bins_clear(b);
+    for (int i = first; i < end; i++) {
+        const Ref *r = &refs[i];
+        int k[3];
+        bin_of(bn, r, k);
+        int tri = ids[i] >= 0;
+        for (int a = 0; a < 3; a++) {
+#if RF_BVH_SSE
+            Box4 *bb = &b->box[a][k[a]];
+            _mm_storeu_ps(bb->lo, _mm_min_ps(_mm_loadu_ps(bb->lo), _mm_loadu_ps(r->lo)));
+            _mm_storeu_ps(bb->hi, _mm_max_ps(_mm_loadu_ps(bb->hi), _mm_loadu_ps(r->hi)));
+#else
+            box4_grow(&b->box[a][k[a]], r->lo, r->hi);
+#endif
+            b->n[a][k[a]]++;
+            b->nt[a][k[a]] += tri;
+        }
+    }
+}
+
+static void bins_merge(Bins *into, const Bins *b)
+{
+    for (int a = 0; a < 3; a++)
+        for (int k = 0; k < BINS; k++) {
+            box4_grow(&into->box[a][k], b->box[a][k].lo, b->box[a][k].hi);
+            into->n[a][k] += b->n[a][k];
+            into->nt[a][k] += b->nt[a][k];
+        }
+}
+
+/* SAH cost of a leaf with n items of which nt are triangles (4 to a block). */
+static float leaf_cost(int n, int nt) { return (float)((nt + LANES - 1) / LANES) + COST_OTHER * (float)(n - nt); }
+
+/* ---- build: the binary tree ---------------------------------------------------------------- */
+
+typedef struct {
+    BNode *nodes;
+    int count, cap;
+} NodeBuf;
+
+typedef struct {
+    Ref *refs;
+    int32_t *ids;  /* item >= 0 for triangles, -1 - item for the caller's items */
+    int threads;
+} Builder;
+
+typedef struct {
+    int first, count, depth;
+    Box4 bounds, cbounds;
+    int parent; /* the top-level node whose child this subtree is, and which side */
+    int side;
+    NodeBuf buf;
+} Task;
+
+typedef struct {
+    Task *tasks;
+    int count, cap;
+    int task_size; /* ranges up to this long become tasks in the top phase */
+} TaskList;
+
+static int nb_new(NodeBuf *nb)
+{
+    if (nb->count == nb->cap) {
+        int cap = nb->cap ? 2 * nb->cap : 256;
+        BNode *n = realloc(nb->nodes, sizeof *n * (size_t)cap);
+        if (!n)
+            return -1;
+        nb->nodes = n;
+        nb->cap = cap;
+    }
+    return nb->count++;
+}
+
+typedef struct {
+    const Builder *b;
+    const Binner *bn;
+    int first, count, chunks;
+    Bins *bins;
+} BinJob;
+
+static int bin_chunk(void *ctx, int i, int thread)
+{
+    const BinJob *j = ctx;
+    int lo = j->first + (int)((long long)j->count * i / j->chunks);
+    int hi = j->first + (int)((long long)j->count * (i + 1) / j->chunks);
+    (void)thread;
+    bin_range(j->b->refs, j->b->ids, lo, hi, j->bn, &j->bins[i]);
+    return 0;
+}
+
+/* Swaps the two items of a range so that triangles come first; returns how many there are. */
+static int split_by_kind(Builder *b, int first, int count)
+{
+    int i = first, j = first + count - 1;
+    while (i <= j) {
+        if (b->ids[i] >= 0) {
+            i++;
+        } else {
+            Ref r = b->refs[i];
+            int32_t id = b->ids[i];
+            b->refs[i] = b->refs[j];
+            b->ids[i] = b->ids[j];
+            b->refs[j] = r;
+            b->ids[j--] = id;
+        }
+    }
+    return i - first;
+}
+
+static void range_bounds(const Builder *b, int first, int count, Box4 *bounds, Box4 *cbounds)
+{
+    *bounds = box4_empty();
+    *cbounds = box4_empty();
+    for (int i = first; i < first + count; i++) {
+        const Ref *r = &b->refs[i];
+        float c[4] = {r->lo[0] + r->hi[0], r->lo[1] + r->hi[1], r->lo[2] + r->hi[2], 0.0f};
+        box4_grow(bounds, r->lo, r->hi);
+        box4_grow(cbounds, c, c);
+    }
+}
+
+/* Chooses how to split refs[first, first + count): returns the number that go left after
+ * partitioning in place (0: make a leaf). SAH over BINS bins per axis; when no bin split
+ * exists (all centroids in one bin) or the depth limit is reached, the range is halved. */
+static int split(Builder *b, int first, int count, int depth, const Box4 *bounds, const Box4 *cbounds)
+{
+    int nt = 0;
+    for (int i = first; i < first + count; i++)
+        nt += b->ids[i] >= 0;
+    if (count == 1)
+        return 0;
+    if (depth > SAH_DEPTH)
+        return count <= MAX_LEAF && (nt == 0 || nt == count) ? 0 : count / 2;
+    Binner bn;
+    int any_axis = 0;
+    for (int a = 0; a < 3; a++) {
+        float ext = cbounds->hi[a] - cbounds->lo[a];
+        bn.cmin[a] = cbounds->lo[a];
+        /* (1 - 2^-10): the largest centroid stays in the last bin despite rounding */
+        bn.scale[a] = ext > 0.0f ? (float)BINS * (1.0f - 0x1p-10f) / ext : 0.0f;
+        any_axis |= ext > 0.0f;
+    }
+    bn.cmin[3] = bn.scale[3] = 0.0f;
+    float leaf = leaf_cost(count, nt);
+    if (!any_axis) /* every centroid coincides */
+        return count <= MAX_LEAF && (nt == 0 || nt == count) ? 0 : count / 2;
+    Bins bins;
+    if (count >= PAR_BIN && b->threads > 1) {
+        Bins *part = malloc(sizeof *part * (size_t)b->threads);
+        BinJob j = {b, &bn, first, count, b->threads, part};
+        if (part && rf_parallel_for(b->threads, b->threads, bin_chunk, NULL, &j) == RF_OK) {
+            bins = part[0];
+            for (int t = 1; t < b->threads; t++)
+                bins_merge(&bins, &part[t]);
+        } else {
+            bin_range(b->refs, b->ids, first, first + count, &bn, &bins);
+        }
+        free(part);
+    } else {
+        bin_range(b->refs, b->ids, first, first + count, &bn, &bins);
+    }
+    float best = INFINITY;
+    int best_axis = -1, best_bin = -1;
+    for (int a = 0; a < 3; a++) {
+        if (!(bn.scale[a] > 0.0f))
+            continue;
+        float right_cost[BINS];
+        Box4 acc = box4_empty();
+        int n = 0, t = 0;
+        for (int k = BINS - 1; k > 0; k--) {
+            box4_grow(&acc, bins.box[a][k].lo, bins.box[a][k].hi);
+            n += bins.n[a][k];
+            t += bins.nt[a][k];
+            right_cost[k] = n ? box4_area(&acc) * leaf_cost(n, t) : -1.0f;
+        }
+        acc = box4_empty();
+        n = t = 0;
+        for (int k = 0; k < BINS - 1; k++) {
+            box4_grow(&acc, bins.box[a][k].lo, bins.box[a][k].hi);
+            n += bins.n[a][k];
+            t += bins.nt[a][k];
+            if (n == 0 || right_cost[k + 1] < 0.0f)
+                continue;
+            float c = box4_area(&acc) * leaf_cost(n, t) + right_cost[k + 1];
+            if (c < best) {
+                best = c;
+                best_axis = a;
+                best_bin = k;
+            }
+        }
+    }
+    if (best_axis < 0)
+        return count <= MAX_LEAF && (nt == 0 || nt == count) ? 0 : count / 2;
+    float area = box4_area(bounds);
+    float split_cost = COST_NODE + (area > 0.0f ? best / area : 0.0f);
+    if (count <= MAX_LEAF && (nt == 0 || nt == count) && leaf <= split_cost)
+        return 0;
+    int i = first, j = first + count - 1;
+    while (i <= j) {
+        int k[3];
+        bin_of(&bn, &b->refs[i], k);
+        if (k[best_axis] <= best_bin) {
+            i++;
+        } else {
+            Ref r = b->refs[i];
+            int32_t id = b->ids[i];
+            b->refs[i] = b->refs[j];
+            b->ids[i] = b->ids[j];
+            b->refs[j] = r;
+            b->ids[j--] = id;
+        }
+    }
+    return i - first;
+}
+
+/* Builds the subtree of refs[first, first + count) into nb; returns its root index or -1
+ * (out of memory). In the top phase (tasks != NULL) ranges up to task_size become tasks. */
+static int build_node(Builder *b, NodeBuf *nb, TaskList *tasks, int first, int count, int depth)
+{
+    int idx = nb_new(nb);
+    if (idx < 0)
+        return -1;
+    Box4 bounds, cbounds;
+    range_bounds(b, first, count, &bounds, &cbounds);
+    nb->nodes[idx].box = bounds;
+    int left = split(b, first, count, depth, &bounds, &cbounds);
+    if (left == 0) {
+        int nt = split_by_kind(b, first, count);
+        if (nt > 0 && nt < count) /* a leaf of both kinds becomes two leaves */
+            left = nt;
+    }
+    if (left == 0) {
+        nb->nodes[idx].a = -1 - first;
+        nb->nodes[idx].b = count;
+        return idx;
+    }
+    int ranges[2][2] = {{first, left}, {first + left, count - left}};
+    int child[2];
+    for (int s = 0; s < 2; s++) {
+        if (tasks && ranges[s][1] <= tasks->task_size) {
+            if (tasks->count == tasks->cap) {
+                int cap = tasks->cap ? 2 * tasks->cap : 64;
+                Task *t = realloc(tasks->tasks, sizeof *t * (size_t)cap);
+                if (!t)
+                    return -1;
+                tasks->tasks = t;
+                tasks->cap = cap;
+            }
+            Task *t = &tasks->tasks[tasks->count];
+            memset(t, 0, sizeof *t);
+            t->first = ranges[s][0];
+            t->count = ranges[s][1];
+            t->depth = depth + 1;
+            t->parent = idx;
+            t->side = s;
+            child[s] = -2 - tasks->count++; /* linked after the parallel phase */
+        } else {
+            child[s] = build_node(b, nb, tasks, ranges[s][0], ranges[s][1], depth + 1);
+            if (child[s] < 0)
+                return -1;
+        }
+    }
+    nb->nodes[idx].a = child[0];
+    nb->nodes[idx].b = child[1];
+    return idx;
+}
+
+typedef struct {
+    Builder *b;
+    TaskList *tl;
+    const int *order; /* tasks by decreasing size */
+} TaskJob;
+
+static int run_task(void *ctx, int i, int thread)
+{
+    TaskJob *j = ctx;
+    Task *t = &j->tl->tasks[j->order[i]];
+    (void)thread;
+    return build_node(j->b, &t->buf, NULL, t->first, t->count, t->depth) < 0;
+}
+
+static int cmp_task_size(const void *a, const void *b, void *ctx);
+
+/* ---- build: collapse to 8-wide nodes ------------------------------------------------------- */
+
+typedef struct {
+    const BNode *bn;      /* the whole binary tree */
+    RfBvhNode *nodes;     /* wide nodes, growing */
+    int count, cap;
+    int depth;
+} Collapse;
+
+static int wide_new(Collapse *c)
+{
+    if (c->count == c->cap) {
+        int cap = c->cap ? 2 * c->cap : 64;
+        RfBvhNode *n = realloc(c->nodes, sizeof *n * (size_t)cap);
+        if (!n)
+            return -1;
+        c->nodes = n;
+        c->cap = cap;
+    }
+    RfBvhNode *n = &c->nodes[c->count];
+    for (int k = 0; k < WIDTH; k++) {
+        for (int a = 0; a < 3; a++) {
+            n->b[2 * a][k] = INFINITY;
+            n->b[2 * a + 1][k] = -INFINITY;
+        }
+        n->ref[k] = 0;
+        n->pad[k] = 0;
+    }
+    return c->count++;
+}
+
+static int is_leaf(const BNode *n) { return n->a < 0; }
+
+/* Fills wide node w with the (up to 8) descendants of binary node bi: the child with the
+ * largest area is opened until 8 slots are used or only leaves are left. A leaf slot gets its
+ * kind and count in ref and, until the blocks are laid out, its range start in pad. */
+static int collapse(Collapse *c, const int32_t *ids, int bi, int w, int depth)
+{
+    int slot[WIDTH], n = 0;
+    if (depth > c->depth)
+        c->depth = depth;
+    if (is_leaf(&c->bn[bi])) {
+        slot[n++] = bi;
+    } else {
+        slot[n++] = c->bn[bi].a;
+        slot[n++] = c->bn[bi].b;
+        while (n < WIDTH) {
+            int best = -1;
+            float best_area = -1.0f;
+            for (int k = 0; k < n; k++) {
+                const BNode *s = &c->bn[slot[k]];
+                float a = box4_area(&s->box);
+                if (!is_leaf(s) && a > best_area) {
+                    best_area = a;
+                    best = k;
+                }
+            }
+            if (best < 0)
+                break;
+            int open = slot[best];
+            slot[best] = c->bn[open].a;
+            slot[n++] = c->bn[open].b;
+        }
+    }
+    int inner[WIDTH];
+    for (int k = 0; k < n; k++) {
+        const BNode *s = &c->bn[slot[k]];
+        RfBvhNode *wn = &c->nodes[w];
+        for (int a = 0; a < 3; a++) {
+            wn->b[2 * a][k] = s->box.lo[a];
+            wn->b[2 * a + 1][k] = s->box.hi[a];
+        }
+        inner[k] = -1;
+        if (is_leaf(s)) {
+            int first = -1 - s->a;
+            wn->ref[k] = REF_LEAF(ids[first] >= 0 ? KIND_TRIS : KIND_OTHERS, 0, s->b);
+            wn->pad[k] = (uint32_t)first;
+        } else {
+            int id = c->count < MAX_NODES ? wide_new(c) : -1;
+            if (id < 0)
+                return -1;
+            wn = &c->nodes[w]; /* may have moved */
+            wn->ref[k] = REF_INNER(id);
+            inner[k] = id;
+        }
+    }
+    for (int k = 0; k < n; k++)
+        if (inner[k] >= 0 && collapse(c, ids, slot[k], inner[k], depth + 1) < 0)
+            return -1;
+    return 0;
+}
+
+/* ---- build: the whole -------------------------------------------------------------------- */
+
+typedef struct {
+    const RfBvhDesc *desc;
+    Ref *refs;
+    int32_t *ids;
+    int bad;
+} RefJob;
+
+static int make_refs(void *ctx, int chunk, int thread)
+{
+    RefJob *j = ctx;
+    int n = j->desc->count, chunks = 64;
+    int lo = (int)((long long)n * chunk / chunks), hi = (int)((long long)n * (chunk + 1) / chunks);
+    (void)thread;
+    for (int i = lo; i < hi; i++) {
+        RfTriangle tri;
+        RfAabb box;
+        uint64_t key;
+        uint32_t user;
+        int sides = 0;
+        int is_tri = j->desc->describe(j->desc->ctx, i, &key, &tri, &sides, &user, &box);
+        if (is_tri) {
+            box = rf_aabb_add_point(rf_aabb_add_point(rf_aabb_add_point(rf_aabb_empty(), tri.p1), tri.p2), tri.p3);
+            j->ids[i] = i;
+        } else {
+            j->ids[i] = -1 - i;
+        }
+        const double lo3[3] = {box.lo.x, box.lo.y, box.lo.z}, hi3[3] = {box.hi.x, box.hi.y, box.hi.z};
+        for (int a = 0; a < 3; a++) {
+            if (!isfinite(lo3[a]) || !isfinite(hi3[a]) || !(lo3[a] <= hi3[a]))
+                return j->bad = 1;
+            j->refs[i].lo[a] = rf__round_down(lo3[a]);
+            j->refs[i].hi[a] = rf__round_up(hi3[a]);
+        }
+        j->refs[i].lo[3] = j->refs[i].hi[3] = 0.0f;
+    }
+    return 0;
+}
+
+typedef struct {
+    const RfBvhDesc *desc;
+    RfBvh *bvh;
+    const int32_t *ids;
+    const int *leaf_node, *leaf_slot; /* triangle leaves: where they sit */
+    const int *leaf_start;            /* and their range in ids[] */
+    int leaves;
+    double *vmax; /* per chunk */
+} FillJob;
+
+enum { FILL_CHUNKS = 64 };
+
+static int fill_blocks(void *ctx, int chunk, int thread)
+{
+    FillJob *j = ctx;
+    int lo = (int)((long long)j->leaves * chunk / FILL_CHUNKS);
+    int hi = (int)((long long)j->leaves * (chunk + 1) / FILL_CHUNKS);
+    double vmax = 0.0;
+    (void)thread;
+    for (int l = lo; l < hi; l++) {
+        uint32_t ref = j->bvh->nodes[j->leaf_node[l]].ref[j->leaf_slot[l]];
+        int first = j->leaf_start[l], blk0 = REF_FIRST(ref);
+        int count = j->bvh->nodes[j->leaf_node[l]].pad[j->leaf_slot[l]];
+        for (int i = 0; i < count; i++) {
+            RfBvhTriBlock *blk = &j->bvh->blocks[blk0 + i / LANES];
+            int lane = i % LANES;
+            RfTriangle tri;
+            RfAabb box;
+            uint64_t key;
+            uint32_t user = 0;
+            int sides = 0;
+            j->desc->describe(j->desc->ctx, j->ids[first + i], &key, &tri, &sides, &user, &box);
+            const RfVec3 *p[3] = {&tri.p1, &tri.p2, &tri.p3};
+            for (int v = 0; v < 3; v++) {
+                const double c[3] = {p[v]->x, p[v]->y, p[v]->z};
+                for (int a = 0; a < 3; a++) {
+                    blk->v[v][a][lane] = (float)c[a];
+                    vmax = fabs(c[a]) > vmax ? fabs(c[a]) : vmax;
+                }
+            }
+            blk->key[lane] = key;
+            blk->user[lane] = ((uint32_t)sides << 30) | (user & USER_BITS);
+            blk->tri[lane] = tri;
+        }
+    }
+    j->vmax[chunk] = vmax;
+    return 0;
+}
+
+static int cmp_task_size(const void *a, const void *b, void *ctx)
+{
+    const TaskList *tl = ctx;
+    int ca = tl->tasks[*(const int *)a].count, cb = tl->tasks[*(const int *)b].count;
+    if (ca != cb)
+        return ca > cb ? -1 : 1;
+    return *(const int *)a - *(const int *)b;
+}
+
+/* qsort with a context (C99 has none): an insertion sort, for the few dozen tasks. */
+static void sort_tasks(int *order, int n, TaskList *tl)
+{
+    for (int i = 1; i < n; i++)
+        for (int k = i; k > 0 && cmp_task_size(&order[k], &order[k - 1], tl) < 0; k--) {
+            int t = order[k];
+            order[k] = order[k - 1];
+            order[k - 1] = t;
+        }
+}
+
+static void *aligned(size_t bytes)
+{
+    void *p = NULL;
+    return posix_memalign(&p, 64, bytes ? bytes : 64) == 0 ? p : NULL;
+}
+
+RfStatus rf_bvh_build(RfBvh *bvh, const RfBvhDesc *desc)
+{
+    memset(bvh, 0, sizeof *bvh);
+    bvh->scalar = desc->scalar;
+    int n = desc->count;
+    if (n < 0)
+        return RF_ERR_DOMAIN;
+    bvh->item_count = n;
+    if (n == 0)
+        return RF_OK;
+    RfStatus st = RF_ERR_NOMEM;
+    int threads = desc->threads > 0 ? desc->threads : rf_cpu_count();
+    Builder b = {malloc(sizeof(Ref) * (size_t)n), malloc(sizeof(int32_t) * (size_t)n), threads};
+    NodeBuf top = {NULL, 0, 0};
+    TaskList tl = {NULL, 0, 0, 0};
+    int *order = NULL, *leaf_node = NULL, *leaf_slot = NULL, *leaf_start = NULL;
+    BNode *all = NULL;
+    Collapse c;
+    memset(&c, 0, sizeof c);
+    if (!b.refs || !b.ids)
+        goto done;
+    RefJob rj = {desc, b.refs, b.ids, 0};
+    if (rf_parallel_for(64, threads, make_refs, NULL, &rj) != RF_OK || rj.bad) {
+        st = rj.bad ? RF_ERR_DOMAIN : RF_ERR_NOMEM;
+        goto done;
+    }
+    /* the top levels here, their subtrees on every thread */
+    tl.task_size = n / (TASKS_PER_THREAD * threads);
+    if (tl.task_size < TASK_MIN)
+        tl.task_size = TASK_MIN;
+    if (build_node(&b, &top, threads > 1 ? &tl : NULL, 0, n, 1) < 0)
+        goto done;
+    order = malloc(sizeof *order * (size_t)(tl.count + 1));
+    if (!order)
+        goto done;
+    for (int i = 0; i < tl.count; i++)
+        order[i] = i;
+    sort_tasks(order, tl.count, &tl);
+    TaskJob tj = {&b, &tl, order};
+    if (rf_parallel_for(tl.count, threads, run_task, NULL, &tj) != RF_OK)
+        goto done;
+    /* one array: the top nodes, then each task's nodes (its indices shifted) */
+    size_t total = (size_t)top.count;
+    for (int i = 0; i < tl.count; i++)
+        total += (size_t)tl.tasks[i].buf.count;
+    all = malloc(sizeof *all * total);
+    if (!all)
+        goto done;
+    memcpy(all, top.nodes, sizeof *all * (size_t)top.count);
+    size_t at = (size_t)top.count;
+    for (int i = 0; i < tl.count; i++) {
+        Task *t = &tl.tasks[i];
+        for (int k = 0; k < t->buf.count; k++) {
+            BNode nd = t->buf.nodes[k];
+            if (nd.a >= 0) {
+                nd.a += (int32_t)at;
+                nd.b += (int32_t)at;
+            }
+            all[at + (size_t)k] = nd;
+        }
+        if (t->side == 0)
+            all[t->parent].a = (int32_t)at;
+        else
+            all[t->parent].b = (int32_t)at;
+        at += (size_t)t->buf.count;
+    }
+    /* 8-wide nodes, leaves still as ranges of ids[] */
+    c.bn = all;
+    if (wide_new(&c) < 0 || collapse(&c, b.ids, 0, 0, 1) < 0)
+        goto done;
+    /* leaves: triangle blocks (filled on every thread) and the caller's items */
+    int leaves = 0, blocks = 0, others = 0;
+    for (int i = 0; i < c.count; i++)
+        for (int k = 0; k < WIDTH; k++) {
+            uint32_t r = c.nodes[i].ref[k];
+            if (REF_KIND(r) == KIND_TRIS) {
+                leaves++;
+                blocks += (REF_COUNT(r) + LANES - 1) / LANES;
+            } else if (REF_KIND(r) == KIND_OTHERS) {
+                others += REF_COUNT(r);
+            }
+        }
+    if (blocks >= MAX_FIRST || others >= MAX_FIRST)
+        goto done;
+    bvh->nodes = aligned(sizeof *bvh->nodes * (size_t)c.count);
+    bvh->blocks = aligned(sizeof *bvh->blocks * (size_t)blocks);
+    bvh->others = malloc(sizeof *bvh->others * (size_t)others + 1);
+    leaf_node = malloc(sizeof *leaf_node * (size_t)leaves + 1);
+    leaf_slot = malloc(sizeof *leaf_slot * (size_t)leaves + 1);
+    leaf_start = malloc(sizeof *leaf_start * (size_t)leaves + 1);
+    if (!bvh->nodes || !bvh->blocks || !bvh->others || !leaf_node || !leaf_slot || !leaf_start)
+        goto done;
+    memcpy(bvh->nodes, c.nodes, sizeof *bvh->nodes * (size_t)c.count);
+    bvh->node_count = c.count;
+    bvh->block_count = blocks;
+    bvh->depth = c.depth;
+    /* references to their blocks and keys; pad keeps a triangle leaf's item count until filled */
+    int l = 0, blk = 0, oth = 0;
+    for (int i = 0; i < c.count; i++)
+        for (int k = 0; k < WIDTH; k++) {
+            RfBvhNode *nd = &bvh->nodes[i];
+            uint32_t r = nd->ref[k];
+            int start = (int)nd->pad[k], count = REF_COUNT(r);
+            nd->pad[k] = 0;
+            if (REF_KIND(r) == KIND_TRIS) {
+                int nb = (count + LANES - 1) / LANES;
+                leaf_node[l] = i;
+                leaf_slot[l] = k;
+                leaf_start[l++] = start;
+                nd->ref[k] = REF_LEAF(KIND_TRIS, blk, nb);
+                nd->pad[k] = (uint32_t)count;
+                blk += nb;
+            } else if (REF_KIND(r) == KIND_OTHERS) {
+                for (int q = 0; q < count; q++) {
+                    RfTriangle tri;
+                    RfAabb box;
+                    uint32_t user;
+                    int sides;
+                    desc->describe(desc->ctx, -1 - b.ids[start + q], &bvh->others[oth + q], &tri, &sides, &user, &box);
+                }
+                nd->ref[k] = REF_LEAF(KIND_OTHERS, oth, count);
+                oth += count;
+            }
+        }
+    bvh->other_count = others;
+    memset(bvh->blocks, 0, sizeof *bvh->blocks * (size_t)blocks); /* key 0: empty lanes */
+    double vmax[FILL_CHUNKS];
+    FillJob fj = {desc, bvh, b.ids, leaf_node, leaf_slot, leaf_start, leaves, vmax};
+    if (rf_parallel_for(FILL_CHUNKS, threads, fill_blocks, NULL, &fj) != RF_OK)
+        goto done;
+    for (int i = 0; i < leaves; i++)
+        bvh->nodes[leaf_node[i]].pad[leaf_slot[i]] = 0;
+    bvh->vmax = 0.0;
+    for (int i = 0; i < FILL_CHUNKS; i++)
+        bvh->vmax = vmax[i] > bvh->vmax ? vmax[i] : bvh->vmax;
+    bvh->tri_count = 0;
+    for (int i = 0; i < n; i++)
+        bvh->tri_count += b.ids[i] >= 0;
+    st = RF_OK;
+done:
+    free(b.refs);
+    free(b.ids);
+    free(top.nodes);
+    for (int i = 0; i < tl.count; i++)
+        free(tl.tasks[i].buf.nodes);
+    free(tl.tasks);
+    free(order);
+    free(all);
+    free(c.nodes);
+    free(leaf_node);
+    free(leaf_slot);
+    free(leaf_start);
+    if (st != RF_OK) {
+        rf_bvh_free(bvh);
+        bvh->scalar = desc->scalar;
+    }
+    return st;
+}
+
+void rf_bvh_free(RfBvh *bvh)
+{
+    free(bvh->nodes);
+    free(bvh->blocks);
+    free(bvh->others);
+    memset(bvh, 0, sizeof *bvh);
+}
+
+size_t rf_bvh_bytes(const RfBvh *bvh)
+{
+    return sizeof *bvh->nodes * (size_t)bvh->node_count + sizeof *bvh->blocks * (size_t)bvh->block_count +
+           sizeof *bvh->others * (size_t)bvh->other_count;
+}
+

@@ -1,0 +1,67 @@
+/* The BVH's memory layout and float rounding, shared by its build (bvh_build.c) and its
+ * traversal (bvh_trace.c); internal to src/geom. docs/performance.md draws it. */
+#ifndef RF_GEOM_BVH_LAYOUT_H
+#define RF_GEOM_BVH_LAYOUT_H
+
+#include <stdint.h>
+#include <string.h>
+
+#include "refray/bvh.h"
+
+/* A child reference: the kind in the top 2 bits; an inner node's index below; a leaf's count - 1
+ * (triangle blocks or items, at most 16) in the next 4 bits and its first block or item in the
+ * low 26. 0 is an empty slot. */
+enum { KIND_EMPTY = 0, KIND_INNER = 1, KIND_TRIS = 2, KIND_OTHERS = 3 };
+#define REF_INNER(index) ((1u << 30) | (uint32_t)(index))
+#define REF_LEAF(kind, first, count) (((uint32_t)(kind) << 30) | ((uint32_t)((count) - 1) << 26) | (uint32_t)(first))
+#define REF_KIND(r) ((r) >> 30)
+#define REF_INDEX(r) ((int)((r) & 0x3fffffffu))
+#define REF_FIRST(r) ((int)((r) & 0x3ffffffu))
+#define REF_COUNT(r) ((int)(((r) >> 26) & 15u) + 1)
+#define MAX_NODES (1 << 30)
+#define MAX_FIRST (1 << 26)
+
+#define LANES 4 /* triangles per block */
+#define USER_BITS 0x3fffffffu
+#define WIDTH 8 /* children per node */
+
+struct RfBvhNode {
+    float b[6][8];     /* [2 axis]: lo, [2 axis + 1]: hi of each child box; empty: +inf, -inf */
+    uint32_t ref[8];   /* REF_* */
+    uint32_t pad[8];   /* 256 bytes: a node is 4 whole cache lines */
+};
+
+/* Four triangles: the float copy the filter reads, then the double vertices the watertight test
+ * reads for the lanes the filter keeps, in the same 512 bytes. */
+struct RfBvhTriBlock {
+    float v[3][3][4];  /* [vertex][axis][lane], each coordinate rounded to nearest */
+    uint64_t key[4];   /* the caller's key; 0: an empty lane */
+    uint32_t user[4];  /* RF_BVH_SEE_* in the top 2 bits, the caller's 30 below */
+    RfTriangle tri[4];
+    uint32_t pad2[8];
+};
+
+/* The next float above f (f not NaN, not +inf): one step of the bit pattern. */
+static inline float rf__float_above(float f)
+{
+    uint32_t u;
+    memcpy(&u, &f, sizeof u);
+    if ((u & 0x7fffffffu) == 0)
+        return 0x1p-149f;
+    u = (u >> 31) ? u - 1 : u + 1;
+    memcpy(&f, &u, sizeof f);
+    return f;
+}
+/* x rounded to a float toward -inf / +inf. */
+static inline float rf__round_down(double x)
+{
+    float f = (float)x;
+    return (double)f > x ? -rf__float_above(-f) : f;
+}
+static inline float rf__round_up(double x)
+{
+    float f = (float)x;
+    return (double)f < x ? rf__float_above(f) : f;
+}
+
+#endif

@@ -1,0 +1,358 @@
+/* The BVH's traversal (refray/bvh.h): the ray's conservative float set-up, the 8-wide node
+ * test (AVX or scalar), the triangle filter (SSE or scalar), the double-precision decision and
+ * the ordered stack walk shared by nearest-hit and occlusion queries. */
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "bvh_layout.h"
+
+#if defined(__AVX__)
+#include <immintrin.h>
+#define RF_BVH_AVX 1
+#endif
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#define RF_BVH_SSE 1
+#endif
+
+#define STACK (WIDTH * 64) /* (children - 1) per level, depth < 64 */
+
+static inline float fmaxf_(float a, float b) { return b > a ? b : a; }
+
+/* float unit roundoff */
+#define U32 0x1p-24
+
+void rf_bvh_ray_init(const RfBvh *bvh, RfRay ray, RfBvhRay *r)
+{
+    r->wr = rf_watertight_ray(ray);
+    const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+    const double d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
+    double omax = 0.0;
+    for (int a = 0; a < 3; a++) {
+        double inv = 1.0 / d[a]; /* +-inf for +-0 */
+        int neg = signbit(inv) != 0;
+        float fi = (float)inv;
+        /* Slab distances (plane - origin) * inv, rounded toward "hit": the near plane's origin
+         * rounded so the difference can only shrink, the far plane's so it can only grow, and
+         * 1/dir shrunk / grown by 8 ulps, which covers the roundings of the conversion, the
+         * difference and the product (docs/performance.md). A zero component has inv = inf:
+         * the near factor is clamped to 2^127 (still a lower bound) so that a finite difference
+         * stays finite; the far factor may be inf. */
+        float near = fi * (1.0f - 0x1p-21f), far = fi * (1.0f + 0x1p-21f);
+        if (!(fabsf(near) <= 0x1p127f))
+            near = neg ? -0x1p127f : 0x1p127f;
+        r->near_hi[a] = neg;
+        r->inv[0][a] = near;
+        r->inv[1][a] = far;
+        /* d > 0: the near plane is lo, t = (lo - o) / d is lowered by an origin rounded up */
+        float up = rf__round_up(o[a]), down = rf__round_down(o[a]);
+        r->org[0][a] = neg ? down : up;
+        r->org[1][a] = neg ? up : down;
+        double ao = fabs(o[a]);
+        omax = ao > omax ? ao : omax;
+    }
+    /* The filter (docs/performance.md): every ray-space coordinate computed in float lies
+     * within delta = 9 u (vmax + |o|max) of the double test's, so each edge function lies within
+     * B = 4.2 m delta + 4.2 u m^2 + 2.1 delta^2 of the exact one whose sign the double test
+     * takes (m: the largest float coordinate of the triangle). The slack over 4, 4, 2 covers
+     * the rounding of B itself; 2^-140 and 2^-120 cover underflow. */
+    r->fo[0] = (float)o[r->wr.kx];
+    r->fo[1] = (float)o[r->wr.ky];
+    r->fo[2] = (float)o[r->wr.kz];
+    r->fsx = (float)r->wr.sx;
+    r->fsy = (float)r->wr.sy;
+    double R = bvh->vmax + omax;
+    r->filter = R <= 0x1p60;
+    double delta = (9.0 * U32 * R + 0x1p-140) * (1.0 + 0x1p-20);
+    r->k1 = rf__round_up(4.2 * delta);
+    r->k2 = rf__round_up(4.2 * U32);
+    r->k3 = rf__round_up(2.1 * delta * delta + 0x1p-120);
+}
+
+/* ---- traversal: node and triangle kernels ------------------------------------------------ */
+
+/* The children a ray enters within [tmin, tmax]: bit k of the result; tn[k] their entry
+ * distances. NaN (0 * inf: a parallel ray with its origin on a slab plane) is the first
+ * operand of max/min and drops out, which keeps the box (conservative). */
+static inline unsigned node_test_scalar(const RfBvhNode *n, const RfBvhRay *r, float tmin, float tmax, float *tn)
+{
+    unsigned mask = 0;
+    for (int k = 0; k < WIDTH; k++) {
+        float t0 = tmin, t1 = tmax;
+        for (int a = 0; a < 3; a++) {
+            float e = (n->b[2 * a + r->near_hi[a]][k] - r->org[0][a]) * r->inv[0][a];
+            float x = (n->b[2 * a + 1 - r->near_hi[a]][k] - r->org[1][a]) * r->inv[1][a];
+            t0 = e > t0 ? e : t0;
+            t1 = x < t1 ? x : t1;
+        }
+        tn[k] = t0;
+        mask |= (unsigned)(t0 <= t1) << k;
+    }
+    return mask;
+}
+
+#if RF_BVH_AVX
+/* The ray's slab constants broadcast once per query (they stay in registers). */
+typedef struct {
+    __m256 org[2][3], inv[2][3];
+    int lo[3], hi[3]; /* rows of RfBvhNode.b for the near and the far plane of each axis */
+} NodeRay;
+
+static inline void node_ray(const RfBvhRay *r, NodeRay *nr)
+{
+    for (int a = 0; a < 3; a++) {
+        for (int s = 0; s < 2; s++) {
+            nr->org[s][a] = _mm256_set1_ps(r->org[s][a]);
+            nr->inv[s][a] = _mm256_set1_ps(r->inv[s][a]);
+        }
+        nr->lo[a] = 2 * a + r->near_hi[a];
+        nr->hi[a] = 2 * a + 1 - r->near_hi[a];
+    }
+}
+
+static inline unsigned node_test_avx(const RfBvhNode *n, const NodeRay *nr, __m256 tmin, __m256 tmax, float *tn)
+{
+    /* e > t0 ? e : t0 with e first: a NaN e (0 * inf) drops out */
+    __m256 e0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n->b[nr->lo[0]]), nr->org[0][0]), nr->inv[0][0]);
+    __m256 x0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n->b[nr->hi[0]]), nr->org[1][0]), nr->inv[1][0]);
+    __m256 e1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n->b[nr->lo[1]]), nr->org[0][1]), nr->inv[0][1]);
+    __m256 x1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n->b[nr->hi[1]]), nr->org[1][1]), nr->inv[1][1]);
+    __m256 e2 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n->b[nr->lo[2]]), nr->org[0][2]), nr->inv[0][2]);
+    __m256 x2 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n->b[nr->hi[2]]), nr->org[1][2]), nr->inv[1][2]);
+    __m256 t0 = _mm256_max_ps(e2, _mm256_max_ps(e1, _mm256_max_ps(e0, tmin)));
+    __m256 t1 = _mm256_min_ps(x2, _mm256_min_ps(x1, _mm256_min_ps(x0, tmax)));
+    _mm256_storeu_ps(tn, t0);
+    return (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ));
+}
+#endif
+
+/* The lanes of a triangle block that the float edge test cannot rule out (bit k: lane k). */
+static inline unsigned filter_scalar(const RfBvhTriBlock *blk, const RfBvhRay *r)
+{
+    const int kx = r->wr.kx, ky = r->wr.ky, kz = r->wr.kz;
+    unsigned keep = 0;
+    for (int k = 0; k < LANES; k++) {
+        float x[3], y[3];
+        for (int v = 0; v < 3; v++) {
+            float z = blk->v[v][kz][k] - r->fo[2];
+            x[v] = (blk->v[v][kx][k] - r->fo[0]) - r->fsx * z;
+            y[v] = (blk->v[v][ky][k] - r->fo[1]) - r->fsy * z;
+        }
+        float u = x[2] * y[1] - y[2] * x[1];
+        float v = x[0] * y[2] - y[0] * x[2];
+        float w = x[1] * y[0] - y[1] * x[0];
+        float m = 0.0f;
+        for (int q = 0; q < 3; q++) {
+            m = fmaxf_(m, fabsf(x[q]));
+            m = fmaxf_(m, fabsf(y[q]));
+        }
+        float bnd = m * (r->k1 + r->k2 * m) + r->k3, nb = -bnd;
+        int neg = u < nb || v < nb || w < nb, pos = u > bnd || v > bnd || w > bnd;
+        keep |= (unsigned)!(neg && pos) << k;
+    }
+    return keep;
+}
+
+#if RF_BVH_SSE
+static inline unsigned filter_sse(const RfBvhTriBlock *blk, const RfBvhRay *r)
+{
+    const int kx = r->wr.kx, ky = r->wr.ky, kz = r->wr.kz;
+    const __m128 ox = _mm_set1_ps(r->fo[0]), oy = _mm_set1_ps(r->fo[1]), oz = _mm_set1_ps(r->fo[2]);
+    const __m128 sx = _mm_set1_ps(r->fsx), sy = _mm_set1_ps(r->fsy);
+    const __m128 sign = _mm_set1_ps(-0.0f);
+#define RF_SHEAR(vi, X, Y)                                                                      \
+    __m128 X, Y;                                                                               \
+    {                                                                                          \
+        __m128 z_ = _mm_sub_ps(_mm_load_ps(blk->v[vi][kz]), oz);                                \
+        X = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(blk->v[vi][kx]), ox), _mm_mul_ps(sx, z_));       \
+        Y = _mm_sub_ps(_mm_sub_ps(_mm_load_ps(blk->v[vi][ky]), oy), _mm_mul_ps(sy, z_));       \
+    }
+    RF_SHEAR(0, ax, ay)
+    RF_SHEAR(1, bx, by)
+    RF_SHEAR(2, cx, cy)
+#undef RF_SHEAR
+    /* the same operations, in the same order, as filter_scalar */
+    __m128 m = _mm_max_ps(_mm_andnot_ps(sign, ax), _mm_setzero_ps());
+    m = _mm_max_ps(_mm_andnot_ps(sign, ay), m);
+    m = _mm_max_ps(_mm_andnot_ps(sign, bx), m);
+    m = _mm_max_ps(_mm_andnot_ps(sign, by), m);
+    m = _mm_max_ps(_mm_andnot_ps(sign, cx), m);
+    m = _mm_max_ps(_mm_andnot_ps(sign, cy), m);
+    __m128 u = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
+    __m128 v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
+    __m128 w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
+    __m128 bnd = _mm_add_ps(_mm_mul_ps(m, _mm_add_ps(_mm_set1_ps(r->k1), _mm_mul_ps(_mm_set1_ps(r->k2), m))),
+                            _mm_set1_ps(r->k3));
+    __m128 nb = _mm_xor_ps(bnd, sign);
+    __m128 neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u, nb), _mm_cmplt_ps(v, nb)), _mm_cmplt_ps(w, nb));
+    __m128 pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, bnd), _mm_cmpgt_ps(v, bnd)), _mm_cmpgt_ps(w, bnd));
+    return ~(unsigned)_mm_movemask_ps(_mm_and_ps(neg, pos)) & 0xFu;
+}
+#endif
+
+static inline unsigned block_filter(const RfBvh *bvh, const RfBvhTriBlock *blk, const RfBvhRay *r)
+{
+    if (!r->filter)
+        return 0xFu;
+#if RF_BVH_SSE
+    if (!bvh->scalar)
+        return filter_sse(blk, r);
+#endif
+    (void)bvh;
+    return filter_scalar(blk, r);
+}
+
+/* ---- traversal ------------------------------------------------------------------------------ */
+
+typedef struct {
+    float t;      /* entry distance (a lower bound) */
+    uint32_t ref;
+} Entry;
+
+/* The leaf's triangles: the float filter, then the double watertight test for what is left.
+ * any = 1: returns 1 at the first hit in [t_min, best->t). any = 0: improves *best by the
+ * (t, key) rule and the triangles' sides; returns 1 when it did. */
+static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r, double t_min,
+                            RfBvhHit *best, int any)
+{
+    int improved = 0;
+    const RfBvhTriBlock *blk = &bvh->blocks[REF_FIRST(ref)], *end = blk + REF_COUNT(ref);
+    for (; blk < end; blk++) {
+        for (int l = 3; l < 8; l++)
+            __builtin_prefetch((const char *)blk + 64 * l);
+        unsigned keep = block_filter(bvh, blk, r);
+        while (keep) {
+            int k = __builtin_ctz(keep);
+            keep &= keep - 1;
+            uint64_t key = blk->key[k];
+            double t;
+            if (key == 0 || !rf_watertight_t(&r->wr, &blk->tri[k], &t) || !(t >= t_min))
+                continue;
+            if (any) {
+                if (t < best->t)
+                    return 1;
+                continue;
+            }
+            if (!(t < best->t || (t == best->t && key < best->key)))
+                continue;
+            unsigned sides = blk->user[k] >> 30;
+            if (sides != RF_BVH_SEE_BOTH) {
+                RfVec3 nrm = rf_triangle_unit_normal(&blk->tri[k]);
+                int front = rf_vec3_dot(r->wr.ray.dir, nrm) < 0.0;
+                if (front != (sides == RF_BVH_SEE_FRONT))
+                    continue;
+            }
+            best->t = t;
+            best->key = key;
+            best->tri = &blk->tri[k];
+            best->user = blk->user[k] & USER_BITS;
+            improved = 1;
+        }
+    }
+    return improved;
+}
+
+static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r, double t_min,
+                              RfBvhHit *best, RfBvhItemFn fn, void *ctx, int any)
+{
+    int improved = 0;
+    const uint64_t *key = &bvh->others[REF_FIRST(ref)], *end = key + REF_COUNT(ref);
+    for (; key < end; key++) {
+        double t;
+        if (!fn(ctx, *key, r, t_min, best->t, !any && *key < best->key, &t))
+            continue;
+        if (any)
+            return 1;
+        best->t = t;
+        best->key = *key;
+        best->tri = NULL;
+        improved = 1;
+    }
+    return improved;
+}
+
+static inline int traverse(const RfBvh *bvh, const RfBvhRay *r, double t_min, RfBvhHit *best,
+                           RfBvhItemFn fn, void *ctx, int any)
+{
+    if (bvh->node_count == 0)
+        return 0;
+#if RF_BVH_AVX
+    NodeRay nr;
+    node_ray(r, &nr);
+#endif
+    Entry stack[STACK];
+    int top = 0, found = 0;
+    const float tmin = rf__round_down(t_min);
+    float tmax = rf__round_up(best->t);
+    uint32_t cur = REF_INNER(0);
+    for (;;) {
+        if (REF_KIND(cur) == KIND_INNER) {
+            const RfBvhNode *n = &bvh->nodes[REF_INDEX(cur)];
+            float tn[WIDTH];
+            unsigned mask;
+#if RF_BVH_AVX
+            if (!bvh->scalar)
+                mask = node_test_avx(n, &nr, _mm256_set1_ps(tmin), _mm256_set1_ps(tmax), tn);
+            else
+#endif
+                mask = node_test_scalar(n, r, tmin, tmax, tn);
+            if (mask) {
+                int k = __builtin_ctz(mask);
+                mask &= mask - 1;
+                if (!mask) { /* one child: no order to keep */
+                    cur = n->ref[k];
+                    continue;
+                }
+                /* several: onto the stack, sorted there so that the nearest is on top (an
+                 * empty slot, entered only through NaN, is a leaf of nothing) */
+                int base = top;
+                for (;;) {
+                    Entry e = {tn[k], n->ref[k]};
+                    int q = top++;
+                    for (; q > base && stack[q - 1].t < e.t; q--)
+                        stack[q] = stack[q - 1];
+                    stack[q] = e;
+                    if (!mask)
+                        break;
+                    k = __builtin_ctz(mask);
+                    mask &= mask - 1;
+                }
+                cur = stack[--top].ref;
+                continue;
+            }
+        } else if (REF_KIND(cur) != KIND_EMPTY) {
+            int hit = REF_KIND(cur) == KIND_TRIS ? leaf_tris(bvh, cur, r, t_min, best, any)
+                                                 : leaf_others(bvh, cur, r, t_min, best, fn, ctx, any);
+            if (hit) {
+                if (any)
+                    return 1;
+                found = 1;
+                tmax = rf__round_up(best->t);
+            }
+        }
+        /* the next subtree that can still hold a hit as near as the best (ties count) */
+        for (;;) {
+            if (top == 0)
+                return found;
+            --top;
+            if (stack[top].t <= tmax)
+                break;
+        }
+        cur = stack[top].ref;
+    }
+}
+
+int rf_bvh_nearest(const RfBvh *bvh, const RfBvhRay *ray, double t_min, RfBvhHit *best,
+                   RfBvhItemFn fn, void *ctx)
+{
+    return traverse(bvh, ray, t_min, best, fn, ctx, 0);
+}
+
+int rf_bvh_occluded(const RfBvh *bvh, const RfBvhRay *ray, double t_min, double t_max,
+                    RfBvhItemFn fn, void *ctx)
+{
+    RfBvhHit lim = {t_max, 0, NULL, 0};
+    return traverse(bvh, ray, t_min, &lim, fn, ctx, 1);
+}
