@@ -545,7 +545,104 @@ static void test_mesh_scenes(void)
     RF_CHECK(strstr(out, "  cluster      group: 0 primitives (0 triangles), 3 instances of chain, chain, ring_blue") != NULL);
 }
 
+/* A random decimal number in one of the spellings OBJ files use (and a few they should not):
+ * digits before and after the point, leading zeros and signs, exponents, up to 20 significant
+ * digits; most take the reader's fast decimal path, the rest strtod. */
+static void random_number(RfTestRng *r, char *buf, size_t n)
+{
+    char mant[64];
+    int k = 0, digits = 1 + (int)rf_test_uniform(r, 0, 20), point = (int)rf_test_uniform(r, -1, digits + 1);
+    int sign = (int)rf_test_uniform(r, 0, 3), form = (int)rf_test_uniform(r, 0, 6);
+    if (sign == 1)
+        mant[k++] = '-';
+    else if (sign == 2 && form == 0)
+        mant[k++] = '+';
+    if (form == 1)
+        mant[k++] = '0';
+    for (int i = 0; i < digits; i++) {
+        if (i == point)
+            mant[k++] = '.';
+        mant[k++] = (char)('0' + (int)rf_test_uniform(r, 0, 10));
+    }
+    if (point == digits)
+        mant[k++] = '.';
+    mant[k] = 0;
+    if (form >= 4)
+        snprintf(buf, n, "%s%c%d", mant, form == 4 ? 'e' : 'E', (int)rf_test_uniform(r, -30, 31));
+    else
+        snprintf(buf, n, "%s", mant);
+}
+
+/* The OBJ reader's fast path (plain v and f lines, its own decimal conversion) against the
+ * statement readers (the same file with every line indented) and against strtod: the same
+ * doubles bit for bit, the same faces. */
+static void test_obj_fast_path(void)
+{
+    RfTestRng r = {2024};
+    enum { NV = 3000 };
+    size_t cap = NV * 120 + 4096;
+    char *fast = malloc(cap), *slow = malloc(cap + NV * 4);
+    double *want = malloc(sizeof *want * NV * 3);
+    size_t nf = 0, ns = 0;
+    for (int i = 0; i < NV; i++) {
+        char num[3][64], line[256];
+        for (int k = 0; k < 3; k++) {
+            random_number(&r, num[k], sizeof num[k]);
+            want[3 * i + k] = strtod(num[k], NULL);
+        }
+        snprintf(line, sizeof line, "v %s %s%s\t%s%s\n", num[0], num[1], i % 5 ? "" : "  ", num[2], i % 7 ? "" : " # note");
+        nf += (size_t)snprintf(fast + nf, cap - nf, "%s", line);
+        ns += (size_t)snprintf(slow + ns, cap + NV * 4 - ns, " %s", line);
+    }
+    /* texture coordinates and a normal, the faces in every form, then one face per vertex triple
+     * (a nearly degenerate one may be dropped: the same ones both ways) */
+    static const char *const faces[] = {"vt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n", "f 1 2 3\n", "f 4/1 5/2 6/3\n",
+                                        "f 7//1 8//1 9//1\n", "f 10/1/1 11/2/1 12/3/1 13/1/1\n",
+                                        "f 14 15 16 # a comment\r\n", "f -3 -2 -1\n"};
+    for (int i = 0; i < 7; i++) {
+        nf += (size_t)snprintf(fast + nf, cap - nf, "%s", faces[i]);
+        ns += (size_t)snprintf(slow + ns, cap + NV * 4 - ns, "%s%s", i ? " " : "", faces[i]);
+    }
+    int first_face_line = NV + 4 + 7;
+    for (int i = 0; i < NV / 3; i++) {
+        nf += (size_t)snprintf(fast + nf, cap - nf, "f %d %d %d\n", 3 * i + 1, 3 * i + 2, 3 * i + 3);
+        ns += (size_t)snprintf(slow + ns, cap + NV * 4 - ns, " f %d %d %d\n", 3 * i + 1, 3 * i + 2, 3 * i + 3);
+    }
+    RfScene a, b;
+    char err[512];
+    RfStatus sa = read_obj(fast, &a, err, sizeof err), sb = read_obj(slow, &b, err, sizeof err);
+    RF_CHECK_EQ_INT(sa, RF_OK);
+    RF_CHECK_EQ_INT(sb, RF_OK);
+    if (sa == RF_OK && sb == RF_OK) {
+        RF_CHECK(a.prim_count > NV / 6); /* wild magnitudes make many triangles "collinear" */
+        RF_CHECK_EQ_INT(a.prim_count, b.prim_count);
+        RF_CHECK_EQ_INT(a.vertex_count, b.vertex_count);
+        RF_CHECK(memcmp(a.vertices, b.vertices, sizeof *a.vertices * a.vertex_count) == 0);
+        int same = 1, checked = 0;
+        for (size_t p = 0; p < a.prim_count; p++) {
+            int tri = a.prims[p].loc.line - first_face_line;
+            same &= a.prims[p].loc.line == b.prims[p].loc.line;
+            if (tri < 0)
+                continue;
+            for (int k = 0; k < 3; k++) {
+                RfVec3 v = a.vertices[a.prims[p].u.poly.first + (size_t)k];
+                const double *w = &want[3 * (3 * tri + k)];
+                same &= v.x == w[0] && v.y == w[1] && v.z == w[2];
+                checked++;
+            }
+        }
+        RF_CHECK(same);
+        RF_CHECK(checked > NV / 2);
+        rf_scene_free(&a);
+        rf_scene_free(&b);
+    }
+    free(fast);
+    free(slow);
+    free(want);
+}
+
 const RfTest rf_tests_mesh[] = {
+    {"mesh_obj_fast_path", test_obj_fast_path},
     {"mesh_obj_index_forms", test_obj_index_forms},
     {"mesh_obj_polygons", test_obj_polygons},
     {"mesh_obj_vertex_normals", test_obj_vertex_normals},

@@ -24,14 +24,19 @@
 #define TASK_MIN 4096    /* the top levels are split until subtrees are this small ... */
 #define TASKS_PER_THREAD 8 /* ... or there are about this many per thread */
 
-static float fminf_(float a, float b) { return b < a ? b : a; }
-static float fmaxf_(float a, float b) { return b > a ? b : a; }
 
-/* ---- build: primitive references and bins ----------------------------------------------- */
+/* ---- references, boxes, bins ---------------------------------------------------------- */
 
 typedef struct { float lo[4], hi[4]; } Ref; /* lane 3 is 0; the item lives in ids[] */
 typedef struct { float lo[4], hi[4]; } Box4;
 typedef struct { Box4 box; int32_t a, b; } BNode; /* inner: children a, b; leaf: a = -1 - first, b = count */
+
+/* What the split of a range needs to know of it: its box, its centroids' box (centroid = lo + hi,
+ * twice the centre) and how many of its items are triangles. */
+typedef struct {
+    Box4 bounds, cbounds;
+    int nt;
+} Info;
 
 static Box4 box4_empty(void)
 {
@@ -43,12 +48,22 @@ static Box4 box4_empty(void)
     b.lo[3] = b.hi[3] = 0.0f;
     return b;
 }
-static void box4_grow(Box4 *b, const float lo[4], const float hi[4])
+static inline void box4_grow(Box4 *b, const float lo[4], const float hi[4])
 {
+#if RF_BVH_SSE
+    _mm_storeu_ps(b->lo, _mm_min_ps(_mm_loadu_ps(b->lo), _mm_loadu_ps(lo)));
+    _mm_storeu_ps(b->hi, _mm_max_ps(_mm_loadu_ps(b->hi), _mm_loadu_ps(hi)));
+#else
     for (int k = 0; k < 3; k++) {
-        b->lo[k] = fminf_(b->lo[k], lo[k]);
-        b->hi[k] = fmaxf_(b->hi[k], hi[k]);
+        b->lo[k] = lo[k] < b->lo[k] ? lo[k] : b->lo[k];
+        b->hi[k] = hi[k] > b->hi[k] ? hi[k] : b->hi[k];
     }
+#endif
+}
+static inline void centroid(const Ref *r, float c[4])
+{
+    for (int k = 0; k < 4; k++)
+        c[k] = r->lo[k] + r->hi[k];
 }
 static float box4_area(const Box4 *b)
 {
@@ -58,59 +73,79 @@ static float box4_area(const Box4 *b)
     return dx * dy + dy * dz + dz * dx; /* half the area: only ratios matter */
 }
 
+static void info_of(const Ref *refs, const int32_t *ids, int first, int count, Info *in)
+{
+    in->bounds = box4_empty();
+    in->cbounds = box4_empty();
+    in->nt = 0;
+    for (int i = first; i < first + count; i++) {
+        float c[4];
+        centroid(&refs[i], c);
+        box4_grow(&in->bounds, refs[i].lo, refs[i].hi);
+        box4_grow(&in->cbounds, c, c);
+        in->nt += ids[i] >= 0;
+    }
+}
+
 typedef struct {
     Box4 box[3][BINS];
     int n[3][BINS], nt[3][BINS]; /* items and triangles per bin */
 } Bins;
 
-/* The bin of a centroid (lo + hi, twice the centre) along each axis; the build and the
- * partition call the same routine, so they agree bit for bit. */
-typedef struct { float cmin[4], scale[4]; } Binner;
+/* The bin of a centroid along each axis; binning and partitioning call the same routine, so
+ * they agree bit for bit. */
+typedef struct {
+    float cmin[4], scale[4];
+    int bins;
+} Binner;
 
-static inline void bin_of(const Binner *bn, const Ref *r, int k[3])
+static inline void bin_of(const Binner *bn, const Ref *r, int k[4])
 {
+#if RF_BVH_SSE
+    __m128 c = _mm_add_ps(_mm_loadu_ps(r->lo), _mm_loadu_ps(r->hi));
+    __m128 f = _mm_mul_ps(_mm_sub_ps(c, _mm_loadu_ps(bn->cmin)), _mm_loadu_ps(bn->scale));
+    f = _mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), _mm_set1_ps((float)(bn->bins - 1)));
+    _mm_storeu_si128((__m128i *)k, _mm_cvttps_epi32(f));
+#else
+    const float top = (float)(bn->bins - 1);
     for (int a = 0; a < 3; a++) {
         float f = (r->lo[a] + r->hi[a] - bn->cmin[a]) * bn->scale[a];
-        f = f < 0.0f ? 0.0f : f > (float)(BINS - 1) ? (float)(BINS - 1) : f;
+        f = f > 0.0f ? f : 0.0f; /* max, then min: as the vector code */
+        f = f < top ? f : top;
         k[a] = (int)f;
     }
+    k[3] = 0;
+#endif
 }
 
-static void bins_clear(Bins *b)
-{
-    for (int a = 0; a < 3; a++)
-        for (int k = 0; k < BINS; k++) {
-            b->box[a][k] = box4_empty();
-            b->n[a][k] = b->nt[a][k] = 0;
-        }
-}
-
+/* Two sets of bins, items alternating between them: consecutive items often fall into the same
+ * bin, and one set would make each update wait for the previous one. */
 static void bin_range(const Ref *refs, const int32_t *ids, int first, int end, const Binner *bn, Bins *b)
 {
-    bins_clear(b);
+    Bins *two = b + 1;
+    for (int s = 0; s < 2; s++)
+        for (int a = 0; a < 3; a++)
+            for (int k = 0; k < bn->bins; k++) {
+                b[s].box[a][k] = box4_empty();
+                b[s].n[a][k] = b[s].nt[a][k] = 0;
+            }
     for (int i = first; i < end; i++) {
         const Ref *r = &refs[i];
-        int k[3];
+        Bins *bs = (i & 1) ? two : b;
+        int k[4], tri = ids[i] >= 0;
         bin_of(bn, r, k);
-        int tri = ids[i] >= 0;
         for (int a = 0; a < 3; a++) {
-#if RF_BVH_SSE
-            Box4 *bb = &b->box[a][k[a]];
-            _mm_storeu_ps(bb->lo, _mm_min_ps(_mm_loadu_ps(bb->lo), _mm_loadu_ps(r->lo)));
-            _mm_storeu_ps(bb->hi, _mm_max_ps(_mm_loadu_ps(bb->hi), _mm_loadu_ps(r->hi)));
-#else
-            box4_grow(&b->box[a][k[a]], r->lo, r->hi);
-#endif
-            b->n[a][k[a]]++;
-            b->nt[a][k[a]] += tri;
+            box4_grow(&bs->box[a][k[a]], r->lo, r->hi);
+            bs->n[a][k[a]]++;
+            bs->nt[a][k[a]] += tri;
         }
     }
 }
 
-static void bins_merge(Bins *into, const Bins *b)
+static void bins_merge(Bins *into, const Bins *b, int bins)
 {
     for (int a = 0; a < 3; a++)
-        for (int k = 0; k < BINS; k++) {
+        for (int k = 0; k < bins; k++) {
             box4_grow(&into->box[a][k], b->box[a][k].lo, b->box[a][k].hi);
             into->n[a][k] += b->n[a][k];
             into->nt[a][k] += b->nt[a][k];
@@ -120,7 +155,7 @@ static void bins_merge(Bins *into, const Bins *b)
 /* SAH cost of a leaf with n items of which nt are triangles (4 to a block). */
 static float leaf_cost(int n, int nt) { return (float)((nt + LANES - 1) / LANES) + COST_OTHER * (float)(n - nt); }
 
-/* ---- build: the binary tree ---------------------------------------------------------------- */
+/* ---- the binary tree ------------------------------------------------------------------------ */
 
 typedef struct {
     BNode *nodes;
@@ -135,7 +170,7 @@ typedef struct {
 
 typedef struct {
     int first, count, depth;
-    Box4 bounds, cbounds;
+    Info info;
     int parent; /* the top-level node whose child this subtree is, and which side */
     int side;
     NodeBuf buf;
@@ -173,98 +208,94 @@ static int bin_chunk(void *ctx, int i, int thread)
     int lo = j->first + (int)((long long)j->count * i / j->chunks);
     int hi = j->first + (int)((long long)j->count * (i + 1) / j->chunks);
     (void)thread;
-    bin_range(j->b->refs, j->b->ids, lo, hi, j->bn, &j->bins[i]);
+    bin_range(j->b->refs, j->b->ids, lo, hi, j->bn, &j->bins[2 * i]);
     return 0;
 }
 
-/* Swaps the two items of a range so that triangles come first; returns how many there are. */
-static int split_by_kind(Builder *b, int first, int count)
+static void swap_refs(Builder *b, int i, int j)
 {
-    int i = first, j = first + count - 1;
-    while (i <= j) {
-        if (b->ids[i] >= 0) {
-            i++;
-        } else {
-            Ref r = b->refs[i];
-            int32_t id = b->ids[i];
-            b->refs[i] = b->refs[j];
-            b->ids[i] = b->ids[j];
-            b->refs[j] = r;
-            b->ids[j--] = id;
-        }
-    }
-    return i - first;
+    Ref r = b->refs[i];
+    int32_t id = b->ids[i];
+    b->refs[i] = b->refs[j];
+    b->ids[i] = b->ids[j];
+    b->refs[j] = r;
+    b->ids[j] = id;
 }
 
-static void range_bounds(const Builder *b, int first, int count, Box4 *bounds, Box4 *cbounds)
+/* Halves a range without looking at positions (no useful split exists, or the depth limit). */
+static int halve(const Builder *b, int first, int count, Info *left, Info *right)
 {
-    *bounds = box4_empty();
-    *cbounds = box4_empty();
-    for (int i = first; i < first + count; i++) {
-        const Ref *r = &b->refs[i];
-        float c[4] = {r->lo[0] + r->hi[0], r->lo[1] + r->hi[1], r->lo[2] + r->hi[2], 0.0f};
-        box4_grow(bounds, r->lo, r->hi);
-        box4_grow(cbounds, c, c);
-    }
+    int l = count / 2;
+    info_of(b->refs, b->ids, first, l, left);
+    info_of(b->refs, b->ids, first + l, count - l, right);
+    return l;
 }
 
-/* Chooses how to split refs[first, first + count): returns the number that go left after
- * partitioning in place (0: make a leaf). SAH over BINS bins per axis; when no bin split
- * exists (all centroids in one bin) or the depth limit is reached, the range is halved. */
-static int split(Builder *b, int first, int count, int depth, const Box4 *bounds, const Box4 *cbounds)
+/* Chooses how to split refs[first, first + count) and partitions it in place; returns the
+ * number that go left (0: make a leaf) and the two sides' Info. SAH over up to BINS bins per
+ * axis (fewer for short ranges); halves the range when no bin split exists or the depth limit
+ * is reached. */
+static int split(Builder *b, int first, int count, int depth, const Info *in, Info *left, Info *right)
 {
-    int nt = 0;
-    for (int i = first; i < first + count; i++)
-        nt += b->ids[i] >= 0;
+    int leaf_ok = count <= MAX_LEAF;
     if (count == 1)
         return 0;
     if (depth > SAH_DEPTH)
-        return count <= MAX_LEAF && (nt == 0 || nt == count) ? 0 : count / 2;
+        return leaf_ok ? 0 : halve(b, first, count, left, right);
     Binner bn;
     int any_axis = 0;
+    bn.bins = count < 4 * BINS ? 4 + count / 8 : BINS;
     for (int a = 0; a < 3; a++) {
-        float ext = cbounds->hi[a] - cbounds->lo[a];
-        bn.cmin[a] = cbounds->lo[a];
+        float ext = in->cbounds.hi[a] - in->cbounds.lo[a];
+        bn.cmin[a] = in->cbounds.lo[a];
         /* (1 - 2^-10): the largest centroid stays in the last bin despite rounding */
-        bn.scale[a] = ext > 0.0f ? (float)BINS * (1.0f - 0x1p-10f) / ext : 0.0f;
+        bn.scale[a] = ext > 0.0f ? (float)bn.bins * (1.0f - 0x1p-10f) / ext : 0.0f;
         any_axis |= ext > 0.0f;
     }
     bn.cmin[3] = bn.scale[3] = 0.0f;
-    float leaf = leaf_cost(count, nt);
     if (!any_axis) /* every centroid coincides */
-        return count <= MAX_LEAF && (nt == 0 || nt == count) ? 0 : count / 2;
-    Bins bins;
+        return leaf_ok ? 0 : halve(b, first, count, left, right);
+    Bins bins2[2], bins;
     if (count >= PAR_BIN && b->threads > 1) {
-        Bins *part = malloc(sizeof *part * (size_t)b->threads);
+        Bins *part = malloc(sizeof *part * 2 * (size_t)b->threads);
         BinJob j = {b, &bn, first, count, b->threads, part};
         if (part && rf_parallel_for(b->threads, b->threads, bin_chunk, NULL, &j) == RF_OK) {
             bins = part[0];
-            for (int t = 1; t < b->threads; t++)
-                bins_merge(&bins, &part[t]);
+            for (int t = 1; t < 2 * b->threads; t++)
+                bins_merge(&bins, &part[t], bn.bins);
         } else {
-            bin_range(b->refs, b->ids, first, first + count, &bn, &bins);
+            bin_range(b->refs, b->ids, first, first + count, &bn, bins2);
+            bins = bins2[0];
+            bins_merge(&bins, &bins2[1], bn.bins);
         }
         free(part);
     } else {
-        bin_range(b->refs, b->ids, first, first + count, &bn, &bins);
+        bin_range(b->refs, b->ids, first, first + count, &bn, bins2);
+        bins = bins2[0];
+        bins_merge(&bins, &bins2[1], bn.bins);
     }
+    /* sweep each axis: the cost of splitting after bin k */
     float best = INFINITY;
     int best_axis = -1, best_bin = -1;
+    Box4 best_l, best_r;
+    int best_nt = 0;
     for (int a = 0; a < 3; a++) {
         if (!(bn.scale[a] > 0.0f))
             continue;
         float right_cost[BINS];
+        Box4 right_box[BINS];
         Box4 acc = box4_empty();
         int n = 0, t = 0;
-        for (int k = BINS - 1; k > 0; k--) {
+        for (int k = bn.bins - 1; k > 0; k--) {
             box4_grow(&acc, bins.box[a][k].lo, bins.box[a][k].hi);
             n += bins.n[a][k];
             t += bins.nt[a][k];
             right_cost[k] = n ? box4_area(&acc) * leaf_cost(n, t) : -1.0f;
+            right_box[k] = acc;
         }
         acc = box4_empty();
         n = t = 0;
-        for (int k = 0; k < BINS - 1; k++) {
+        for (int k = 0; k < bn.bins - 1; k++) {
             box4_grow(&acc, bins.box[a][k].lo, bins.box[a][k].hi);
             n += bins.n[a][k];
             t += bins.nt[a][k];
@@ -275,48 +306,66 @@ static int split(Builder *b, int first, int count, int depth, const Box4 *bounds
                 best = c;
                 best_axis = a;
                 best_bin = k;
+                best_l = acc;
+                best_r = right_box[k + 1];
+                best_nt = t;
             }
         }
     }
     if (best_axis < 0)
-        return count <= MAX_LEAF && (nt == 0 || nt == count) ? 0 : count / 2;
-    float area = box4_area(bounds);
+        return leaf_ok ? 0 : halve(b, first, count, left, right);
+    float area = box4_area(&in->bounds);
     float split_cost = COST_NODE + (area > 0.0f ? best / area : 0.0f);
-    if (count <= MAX_LEAF && (nt == 0 || nt == count) && leaf <= split_cost)
+    if (leaf_ok && leaf_cost(count, in->nt) <= split_cost)
         return 0;
+    /* partition in place; the centroid boxes of both sides on the way (a branch-free copy into
+     * scratch memory was measured slower: the copy back costs more than the mispredictions) */
+    Box4 lc = box4_empty(), rc = box4_empty();
     int i = first, j = first + count - 1;
     while (i <= j) {
-        int k[3];
+        int k[4];
+        float c[4];
         bin_of(&bn, &b->refs[i], k);
+        centroid(&b->refs[i], c);
         if (k[best_axis] <= best_bin) {
+            box4_grow(&lc, c, c);
             i++;
         } else {
-            Ref r = b->refs[i];
-            int32_t id = b->ids[i];
-            b->refs[i] = b->refs[j];
-            b->ids[i] = b->ids[j];
-            b->refs[j] = r;
-            b->ids[j--] = id;
+            box4_grow(&rc, c, c);
+            swap_refs(b, i, j--);
         }
     }
+    left->bounds = best_l;
+    left->cbounds = lc;
+    left->nt = best_nt;
+    right->bounds = best_r;
+    right->cbounds = rc;
+    right->nt = in->nt - best_nt;
     return i - first;
 }
 
 /* Builds the subtree of refs[first, first + count) into nb; returns its root index or -1
- * (out of memory). In the top phase (tasks != NULL) ranges up to task_size become tasks. */
-static int build_node(Builder *b, NodeBuf *nb, TaskList *tasks, int first, int count, int depth)
+ * (out of memory). In the top phase (tasks != NULL) ranges up to task_size become tasks. A
+ * leaf holds one kind of item: a range of both kinds is split by kind. */
+static int build_node(Builder *b, NodeBuf *nb, TaskList *tasks, int first, int count, int depth, const Info *in)
 {
     int idx = nb_new(nb);
     if (idx < 0)
         return -1;
-    Box4 bounds, cbounds;
-    range_bounds(b, first, count, &bounds, &cbounds);
-    nb->nodes[idx].box = bounds;
-    int left = split(b, first, count, depth, &bounds, &cbounds);
-    if (left == 0) {
-        int nt = split_by_kind(b, first, count);
-        if (nt > 0 && nt < count) /* a leaf of both kinds becomes two leaves */
-            left = nt;
+    nb->nodes[idx].box = in->bounds;
+    Info info[2];
+    int left = split(b, first, count, depth, in, &info[0], &info[1]);
+    if (left == 0 && in->nt > 0 && in->nt < count) {
+        int i = first, j = first + count - 1;
+        while (i <= j) { /* triangles first */
+            if (b->ids[i] >= 0)
+                i++;
+            else
+                swap_refs(b, i, j--);
+        }
+        left = in->nt;
+        info_of(b->refs, b->ids, first, left, &info[0]);
+        info_of(b->refs, b->ids, first + left, count - left, &info[1]);
     }
     if (left == 0) {
         nb->nodes[idx].a = -1 - first;
@@ -340,11 +389,12 @@ static int build_node(Builder *b, NodeBuf *nb, TaskList *tasks, int first, int c
             t->first = ranges[s][0];
             t->count = ranges[s][1];
             t->depth = depth + 1;
+            t->info = info[s];
             t->parent = idx;
             t->side = s;
             child[s] = -2 - tasks->count++; /* linked after the parallel phase */
         } else {
-            child[s] = build_node(b, nb, tasks, ranges[s][0], ranges[s][1], depth + 1);
+            child[s] = build_node(b, nb, tasks, ranges[s][0], ranges[s][1], depth + 1, &info[s]);
             if (child[s] < 0)
                 return -1;
         }
@@ -365,7 +415,7 @@ static int run_task(void *ctx, int i, int thread)
     TaskJob *j = ctx;
     Task *t = &j->tl->tasks[j->order[i]];
     (void)thread;
-    return build_node(j->b, &t->buf, NULL, t->first, t->count, t->depth) < 0;
+    return build_node(j->b, &t->buf, NULL, t->first, t->count, t->depth, &t->info) < 0;
 }
 
 static int cmp_task_size(const void *a, const void *b, void *ctx);
@@ -464,28 +514,48 @@ static int collapse(Collapse *c, const int32_t *ids, int bi, int w, int depth)
 
 /* ---- build: the whole -------------------------------------------------------------------- */
 
+/* What a block's lane needs of an item, kept from the first (sequential) pass over the items so
+ * that filling the blocks in leaf order reads one small record per item instead of calling
+ * describe() on the caller's scene in random order. */
+typedef struct {
+    RfTriangle tri;
+    uint64_t key;
+    uint32_t user; /* sides << 30 | the caller's bits */
+    uint32_t pad;
+} Payload;
+
+enum { CHUNKS = 64 };
+
 typedef struct {
     const RfBvhDesc *desc;
     Ref *refs;
     int32_t *ids;
+    Payload *payload;
+    double vmax[CHUNKS]; /* per chunk: max |coordinate| of a triangle vertex */
     int bad;
 } RefJob;
 
 static int make_refs(void *ctx, int chunk, int thread)
 {
     RefJob *j = ctx;
-    int n = j->desc->count, chunks = 64;
-    int lo = (int)((long long)n * chunk / chunks), hi = (int)((long long)n * (chunk + 1) / chunks);
+    int n = j->desc->count;
+    int lo = (int)((long long)n * chunk / CHUNKS), hi = (int)((long long)n * (chunk + 1) / CHUNKS);
+    double vmax = 0.0;
     (void)thread;
     for (int i = lo; i < hi; i++) {
-        RfTriangle tri;
+        Payload *pl = &j->payload[i];
         RfAabb box;
-        uint64_t key;
-        uint32_t user;
+        uint32_t user = 0;
         int sides = 0;
-        int is_tri = j->desc->describe(j->desc->ctx, i, &key, &tri, &sides, &user, &box);
+        int is_tri = j->desc->describe(j->desc->ctx, i, &pl->key, &pl->tri, &sides, &user, &box);
+        pl->user = ((uint32_t)sides << 30) | (user & USER_BITS);
         if (is_tri) {
-            box = rf_aabb_add_point(rf_aabb_add_point(rf_aabb_add_point(rf_aabb_empty(), tri.p1), tri.p2), tri.p3);
+            const RfVec3 *p[3] = {&pl->tri.p1, &pl->tri.p2, &pl->tri.p3};
+            box = rf_aabb_add_point(rf_aabb_add_point(rf_aabb_add_point(rf_aabb_empty(), *p[0]), *p[1]), *p[2]);
+            for (int v = 0; v < 3; v++) {
+                double m = fmax(fabs(p[v]->x), fmax(fabs(p[v]->y), fabs(p[v]->z)));
+                vmax = m > vmax ? m : vmax;
+            }
             j->ids[i] = i;
         } else {
             j->ids[i] = -1 - i;
@@ -499,55 +569,58 @@ static int make_refs(void *ctx, int chunk, int thread)
         }
         j->refs[i].lo[3] = j->refs[i].hi[3] = 0.0f;
     }
+    j->vmax[chunk] = vmax;
     return 0;
 }
 
 typedef struct {
-    const RfBvhDesc *desc;
     RfBvh *bvh;
     const int32_t *ids;
+    const Payload *payload;
     const int *leaf_node, *leaf_slot; /* triangle leaves: where they sit */
     const int *leaf_start;            /* and their range in ids[] */
     int leaves;
-    double *vmax; /* per chunk */
 } FillJob;
 
-enum { FILL_CHUNKS = 64 };
-
+/* Writes every lane of the blocks of a chunk of triangle leaves (empty lanes: key 0). */
 static int fill_blocks(void *ctx, int chunk, int thread)
 {
-    FillJob *j = ctx;
-    int lo = (int)((long long)j->leaves * chunk / FILL_CHUNKS);
-    int hi = (int)((long long)j->leaves * (chunk + 1) / FILL_CHUNKS);
-    double vmax = 0.0;
+    const FillJob *j = ctx;
+    int lo = (int)((long long)j->leaves * chunk / CHUNKS);
+    int hi = (int)((long long)j->leaves * (chunk + 1) / CHUNKS);
     (void)thread;
     for (int l = lo; l < hi; l++) {
-        uint32_t ref = j->bvh->nodes[j->leaf_node[l]].ref[j->leaf_slot[l]];
-        int first = j->leaf_start[l], blk0 = REF_FIRST(ref);
-        int count = j->bvh->nodes[j->leaf_node[l]].pad[j->leaf_slot[l]];
-        for (int i = 0; i < count; i++) {
-            RfBvhTriBlock *blk = &j->bvh->blocks[blk0 + i / LANES];
+        const RfBvhNode *n = &j->bvh->nodes[j->leaf_node[l]];
+        uint32_t ref = n->ref[j->leaf_slot[l]];
+        int first = j->leaf_start[l], count = (int)n->pad[j->leaf_slot[l]];
+        if (l + 4 < hi) /* the records of a leaf a little ahead */
+            for (int i = 0; i < 8; i++)
+                __builtin_prefetch(&j->payload[j->ids[j->leaf_start[l + 4] + (i < count ? i : 0)]]);
+        RfBvhTriBlock *blk = &j->bvh->blocks[REF_FIRST(ref)];
+        for (int i = 0; i < REF_COUNT(ref) * LANES; i++) {
+            RfBvhTriBlock *b = &blk[i / LANES];
             int lane = i % LANES;
-            RfTriangle tri;
-            RfAabb box;
-            uint64_t key;
-            uint32_t user = 0;
-            int sides = 0;
-            j->desc->describe(j->desc->ctx, j->ids[first + i], &key, &tri, &sides, &user, &box);
-            const RfVec3 *p[3] = {&tri.p1, &tri.p2, &tri.p3};
-            for (int v = 0; v < 3; v++) {
-                const double c[3] = {p[v]->x, p[v]->y, p[v]->z};
-                for (int a = 0; a < 3; a++) {
-                    blk->v[v][a][lane] = (float)c[a];
-                    vmax = fabs(c[a]) > vmax ? fabs(c[a]) : vmax;
-                }
+            if (i >= count) {
+                for (int v = 0; v < 3; v++)
+                    for (int a = 0; a < 3; a++)
+                        b->v[v][a][lane] = 0.0f;
+                b->key[lane] = 0;
+                b->user[lane] = 0;
+                memset(&b->tri[lane], 0, sizeof b->tri[lane]);
+                continue;
             }
-            blk->key[lane] = key;
-            blk->user[lane] = ((uint32_t)sides << 30) | (user & USER_BITS);
-            blk->tri[lane] = tri;
+            const Payload *pl = &j->payload[j->ids[first + i]];
+            const RfVec3 *p[3] = {&pl->tri.p1, &pl->tri.p2, &pl->tri.p3};
+            for (int v = 0; v < 3; v++) {
+                b->v[v][0][lane] = (float)p[v]->x;
+                b->v[v][1][lane] = (float)p[v]->y;
+                b->v[v][2][lane] = (float)p[v]->z;
+            }
+            b->key[lane] = pl->key;
+            b->user[lane] = pl->user;
+            b->tri[lane] = pl->tri;
         }
     }
-    j->vmax[chunk] = vmax;
     return 0;
 }
 
@@ -593,21 +666,36 @@ RfStatus rf_bvh_build(RfBvh *bvh, const RfBvhDesc *desc)
     NodeBuf top = {NULL, 0, 0};
     TaskList tl = {NULL, 0, 0, 0};
     int *order = NULL, *leaf_node = NULL, *leaf_slot = NULL, *leaf_start = NULL;
+    Payload *payload = NULL;
     BNode *all = NULL;
     Collapse c;
     memset(&c, 0, sizeof c);
     if (!b.refs || !b.ids)
         goto done;
-    RefJob rj = {desc, b.refs, b.ids, 0};
-    if (rf_parallel_for(64, threads, make_refs, NULL, &rj) != RF_OK || rj.bad) {
-        st = rj.bad ? RF_ERR_DOMAIN : RF_ERR_NOMEM;
+    RefJob *rj = calloc(1, sizeof *rj);
+    payload = malloc(sizeof *payload * (size_t)n);
+    if (!rj || !payload)
+        goto done;
+    rj->desc = desc;
+    rj->refs = b.refs;
+    rj->ids = b.ids;
+    rj->payload = payload;
+    if (rf_parallel_for(CHUNKS, threads, make_refs, NULL, rj) != RF_OK || rj->bad) {
+        st = rj->bad ? RF_ERR_DOMAIN : RF_ERR_NOMEM;
+        free(rj);
         goto done;
     }
+    bvh->vmax = 0.0;
+    for (int i = 0; i < CHUNKS; i++)
+        bvh->vmax = rj->vmax[i] > bvh->vmax ? rj->vmax[i] : bvh->vmax;
+    free(rj);
     /* the top levels here, their subtrees on every thread */
     tl.task_size = n / (TASKS_PER_THREAD * threads);
     if (tl.task_size < TASK_MIN)
         tl.task_size = TASK_MIN;
-    if (build_node(&b, &top, threads > 1 ? &tl : NULL, 0, n, 1) < 0)
+    Info root;
+    info_of(b.refs, b.ids, 0, n, &root);
+    if (build_node(&b, &top, threads > 1 ? &tl : NULL, 0, n, 1, &root) < 0)
         goto done;
     order = malloc(sizeof *order * (size_t)(tl.count + 1));
     if (!order)
@@ -647,6 +735,10 @@ RfStatus rf_bvh_build(RfBvh *bvh, const RfBvhDesc *desc)
     c.bn = all;
     if (wide_new(&c) < 0 || collapse(&c, b.ids, 0, 0, 1) < 0)
         goto done;
+    free(b.refs); /* not needed any more: make room for the blocks */
+    b.refs = NULL;
+    free(all);
+    all = NULL;
     /* leaves: triangle blocks (filled on every thread) and the caller's items */
     int leaves = 0, blocks = 0, others = 0;
     for (int i = 0; i < c.count; i++)
@@ -690,28 +782,18 @@ RfStatus rf_bvh_build(RfBvh *bvh, const RfBvhDesc *desc)
                 nd->pad[k] = (uint32_t)count;
                 blk += nb;
             } else if (REF_KIND(r) == KIND_OTHERS) {
-                for (int q = 0; q < count; q++) {
-                    RfTriangle tri;
-                    RfAabb box;
-                    uint32_t user;
-                    int sides;
-                    desc->describe(desc->ctx, -1 - b.ids[start + q], &bvh->others[oth + q], &tri, &sides, &user, &box);
-                }
+                for (int q = 0; q < count; q++)
+                    bvh->others[oth + q] = payload[-1 - b.ids[start + q]].key;
                 nd->ref[k] = REF_LEAF(KIND_OTHERS, oth, count);
                 oth += count;
             }
         }
     bvh->other_count = others;
-    memset(bvh->blocks, 0, sizeof *bvh->blocks * (size_t)blocks); /* key 0: empty lanes */
-    double vmax[FILL_CHUNKS];
-    FillJob fj = {desc, bvh, b.ids, leaf_node, leaf_slot, leaf_start, leaves, vmax};
-    if (rf_parallel_for(FILL_CHUNKS, threads, fill_blocks, NULL, &fj) != RF_OK)
+    FillJob fj = {bvh, b.ids, payload, leaf_node, leaf_slot, leaf_start, leaves};
+    if (rf_parallel_for(CHUNKS, threads, fill_blocks, NULL, &fj) != RF_OK)
         goto done;
     for (int i = 0; i < leaves; i++)
         bvh->nodes[leaf_node[i]].pad[leaf_slot[i]] = 0;
-    bvh->vmax = 0.0;
-    for (int i = 0; i < FILL_CHUNKS; i++)
-        bvh->vmax = vmax[i] > bvh->vmax ? vmax[i] : bvh->vmax;
     bvh->tri_count = 0;
     for (int i = 0; i < n; i++)
         bvh->tri_count += b.ids[i] >= 0;
@@ -729,6 +811,7 @@ done:
     free(leaf_node);
     free(leaf_slot);
     free(leaf_start);
+    free(payload);
     if (st != RF_OK) {
         rf_bvh_free(bvh);
         bvh->scalar = desc->scalar;

@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -59,21 +60,76 @@ static void scan(RfLexer *lx)
                                                                          : RF_TOK_WORD;
 }
 
-void rf_lex_init(RfLexer *lx, const char *name, const char *text, size_t len, char *err,
-                 size_t errsz)
+void rf_lex_init_at(RfLexer *lx, const char *name, const char *text, size_t len, int line,
+                    char *err, size_t errsz)
 {
     memset(lx, 0, sizeof *lx);
     lx->name = name;
     lx->p = text;
     lx->end = text + len;
-    lx->line = lx->col = 1;
+    lx->line = line;
+    lx->col = 1;
     lx->last.kind = RF_TOK_EOF;
-    lx->last_end_line = lx->last_end_col = 1;
+    lx->last_end_line = line;
+    lx->last_end_col = 1;
     lx->err = err;
     lx->errsz = errsz;
     if (err && errsz)
         err[0] = 0;
     scan(lx);
+}
+
+void rf_lex_init(RfLexer *lx, const char *name, const char *text, size_t len, char *err,
+                 size_t errsz)
+{
+    rf_lex_init_at(lx, name, text, len, 1, err, errsz);
+}
+
+
+const char *rf_lex_decimal(const char *s, const char *end, double *out)
+{
+    static const double pow10[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                     1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                     1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    int neg = 0, digits = 0, sig = 0, scale = 0;
+    uint64_t m = 0;
+    if (s < end && (*s == '+' || *s == '-'))
+        neg = *s++ == '-';
+    for (; s < end && *s >= '0' && *s <= '9'; s++, digits++)
+        if (m || *s != '0') {
+            if (++sig > 15)
+                return NULL;
+            m = m * 10 + (uint64_t)(*s - '0');
+        }
+    if (s < end && *s == '.')
+        for (s++; s < end && *s >= '0' && *s <= '9'; s++, digits++) {
+            scale--;
+            if (m || *s != '0') {
+                if (++sig > 15)
+                    return NULL;
+                m = m * 10 + (uint64_t)(*s - '0');
+            }
+        }
+    if (digits == 0)
+        return NULL;
+    if (s < end && (*s == 'e' || *s == 'E')) {
+        int eneg = 0, e = 0, edigits = 0;
+        s++;
+        if (s < end && (*s == '+' || *s == '-'))
+            eneg = *s++ == '-';
+        for (; s < end && *s >= '0' && *s <= '9'; s++, edigits++)
+            if ((e = e * 10 + (*s - '0')) > 400)
+                return NULL;
+        if (edigits == 0)
+            return NULL;
+        scale += eneg ? -e : e;
+    }
+    if (scale < -22 || scale > 22)
+        return NULL;
+    double v = (double)m; /* exact: m < 10^15 < 2^53 */
+    v = scale < 0 ? v / pow10[-scale] : v * pow10[scale];
+    *out = neg ? -v : v;
+    return s;
 }
 
 void rf_lex_advance(RfLexer *lx)
@@ -181,6 +237,11 @@ RfStatus rf_lex_number(RfLexer *lx, const char *what, double *out)
     char text[80], q[96];
     char *end = NULL;
     double v = 0.0;
+    if (t.len < sizeof text && rf_lex_decimal(t.s, t.s + t.len, &v) == t.s + t.len) {
+        rf_lex_advance(lx);
+        *out = v;
+        return RF_OK;
+    }
     if (token_text(&t, text, sizeof text)) {
         errno = 0;
         v = strtod(text, &end);

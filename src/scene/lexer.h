@@ -34,6 +34,15 @@ typedef struct {
 
 void rf_lex_init(RfLexer *lx, const char *name, const char *text, size_t len, char *err,
                  size_t errsz);
+/* The same for a piece of a file that starts at the beginning of line `line`. */
+void rf_lex_init_at(RfLexer *lx, const char *name, const char *text, size_t len, int line,
+                    char *err, size_t errsz);
+/* The decimal number at s (before end): [+-] digits [. digits] [(e|E) [+-] digits], at least one
+ * digit before the exponent, up to 15 significant digits and a decimal exponent of at most 22 in
+ * magnitude: then the value is one correctly rounded IEEE operation on two exact doubles
+ * (Clinger 1990), the same bits as strtod. Returns the end of the number, or NULL for anything
+ * else (the caller falls back to strtod). */
+const char *rf_lex_decimal(const char *s, const char *end, double *out);
 /* Consumes the lookahead token (no-op at the end). */
 void rf_lex_advance(RfLexer *lx);
 /* 1 when the token is the word w. */

@@ -322,6 +322,124 @@ static RfStatus read_statement(ObjReader *r, const RfToken *kw)
     return rf_lex_error(&r->lx, kw->line, kw->col, "unknown OBJ keyword %s", rf_lex_quote(kw, q, sizeof q));
 }
 
+/* ---- the fast path: plain `v x y z` and `f` lines ------------------------------------------- */
+
+/* Most of a large OBJ file is `v x y z` and `f a b c` lines. These are read here directly: the
+ * same values as the statement readers above (numbers by rf_lex_decimal, which is correctly
+ * rounded, integers exactly), and anything unusual — another keyword, a fourth number, a
+ * negative or out-of-range index, an exotic number — returns 0 so that the line goes through
+ * the statement readers, which also write every error message. */
+static const char *skip_blanks(const char *s, const char *end)
+{
+    while (s < end && (*s == ' ' || *s == '\t' || *s == '\r'))
+        s++;
+    return s;
+}
+
+static int token_end(const char *s, const char *end)
+{
+    return s == end || *s == ' ' || *s == '\t' || *s == '\r' || *s == '#';
+}
+
+static int fast_vertex(ObjReader *r, const char *s, const char *end)
+{
+    double c[3];
+    for (int k = 0; k < 3; k++) {
+        s = skip_blanks(s, end);
+        const char *e = rf_lex_decimal(s, end, &c[k]);
+        if (!e || e - s >= 80 || !token_end(e, end))
+            return 0;
+        s = e;
+    }
+    s = skip_blanks(s, end);
+    if (s < end && *s != '#')
+        return 0;
+    if (!grow((void **)&r->pos, &r->cap_pos, r->npos, sizeof *r->pos))
+        return 0;
+    r->pos[r->npos++] = rf_vec3(c[0], c[1], c[2]);
+    return 1;
+}
+
+/* A positive index up to count, or 0. */
+static long fast_index(const char **s, const char *end, size_t count)
+{
+    long v = 0;
+    const char *p = *s;
+    for (; p < end && *p >= '0' && *p <= '9' && v <= 100000000000L; p++)
+        v = v * 10 + (*p - '0');
+    if (p == *s || v < 1 || (size_t)v > count)
+        return 0;
+    *s = p;
+    return v;
+}
+
+static int fast_face(ObjReader *r, const char *s, const char *end, int line)
+{
+    Face f;
+    memset(&f, 0, sizeof f);
+    f.first = r->ncorners;
+    f.material = r->material;
+    f.group = r->group;
+    f.loc.line = line;
+    f.loc.col = 1;
+    int form0 = -1;
+    for (;;) {
+        s = skip_blanks(s, end);
+        if (s == end || *s == '#')
+            break;
+        Corner c = {0, -1};
+        int form = 0;
+        long v = fast_index(&s, end, r->npos);
+        if (!v)
+            goto slow;
+        c.v = v - 1;
+        if (s < end && *s == '/') {
+            s++;
+            form = 2;
+            if (s < end && *s != '/') {
+                if (!fast_index(&s, end, r->ntex))
+                    goto slow;
+                form = 1;
+            }
+            if (s < end && *s == '/') {
+                s++;
+                long n = fast_index(&s, end, r->nnrm);
+                if (!n)
+                    goto slow;
+                c.vn = n - 1;
+                form = form == 1 ? 3 : 2;
+            } else if (form == 2) {
+                goto slow; /* "v/" */
+            }
+        }
+        if (!token_end(s, end) || (form0 >= 0 && form != form0) || f.n == INT32_MAX ||
+            !grow((void **)&r->corners, &r->cap_corners, r->ncorners, sizeof c))
+            goto slow;
+        form0 = form;
+        r->corners[r->ncorners++] = c;
+        f.n++;
+    }
+    if (f.n < 3 || !grow((void **)&r->faces, &r->cap_faces, r->nfaces, sizeof f))
+        goto slow;
+    f.has_vn = form0 >= 2;
+    r->faces[r->nfaces++] = f;
+    return 1;
+slow:
+    r->ncorners = f.first;
+    return 0;
+}
+
+static int fast_line(ObjReader *r, const char *s, const char *end, int line)
+{
+    if (end - s < 2 || (s[1] != ' ' && s[1] != '\t'))
+        return 0;
+    if (s[0] == 'v')
+        return fast_vertex(r, s + 2, end);
+    if (s[0] == 'f')
+        return fast_face(r, s + 2, end, line);
+    return 0;
+}
+
 /* ---- normals and faces into the scene ------------------------------------------------------ */
 
 static RfVec3 corner_pos(const ObjReader *r, const Face *f, int k)
@@ -329,19 +447,12 @@ static RfVec3 corner_pos(const ObjReader *r, const Face *f, int k)
     return r->pos[r->corners[f->first + (size_t)k].v];
 }
 
-/* Twice the vector area (the fan's cross products, = Newell's normal) and the largest squared
- * distance from the first vertex, as the model's degeneracy test measures them. */
-static RfVec3 face_area(const ObjReader *r, const Face *f, double *ext2)
+/* The face's area vector and extent as the model's degeneracy test measures them. */
+static RfVec3 face_area(const ObjReader *r, const Face *f, RfVec3 *buf, double *ext2)
 {
-    RfVec3 sum = rf_vec3(0, 0, 0), v0 = corner_pos(r, f, 0);
-    *ext2 = 0.0;
-    for (int i = 1; i < f->n; i++) {
-        RfVec3 a = rf_vec3_sub(corner_pos(r, f, i), v0);
-        *ext2 = fmax(*ext2, rf_vec3_dot(a, a));
-        if (i + 1 < f->n)
-            sum = rf_vec3_add(sum, rf_vec3_cross(a, rf_vec3_sub(corner_pos(r, f, i + 1), v0)));
-    }
-    return sum;
+    for (int k = 0; k < f->n; k++)
+        buf[k] = corner_pos(r, f, k);
+    return rf__polygon_area_vector(buf, f->n, ext2);
 }
 
 typedef struct {
@@ -369,12 +480,19 @@ static RfStatus smoothing_init(const ObjReader *r, Smoothing *sm)
     if (!sm->area || !sm->unit || !sm->start || !sm->list)
         return RF_ERR_NOMEM;
     sm->cos_crease = cos(r->pl->crease_deg * (RF_PI / 180.0));
+    int most = 3;
+    for (size_t i = 0; i < r->nfaces; i++)
+        most = r->faces[i].n > most ? r->faces[i].n : most;
+    RfVec3 *buf = malloc(sizeof *buf * (size_t)most);
+    if (!buf)
+        return RF_ERR_NOMEM;
     for (size_t i = 0; i < r->nfaces; i++) {
         double ext2;
-        sm->area[i] = face_area(r, &r->faces[i], &ext2);
+        sm->area[i] = face_area(r, &r->faces[i], buf, &ext2);
         double len = rf_vec3_length(sm->area[i]);
         sm->unit[i] = len > 0.0 ? rf_vec3_scale(sm->area[i], 1.0 / len) : rf_vec3(0, 0, 0);
     }
+    free(buf);
     for (size_t c = 0; c < r->ncorners; c++)
         sm->start[r->corners[c].v + 1]++;
     for (size_t v = 0; v < np; v++)
@@ -415,7 +533,11 @@ static RfStatus emit_faces(ObjReader *r)
     Smoothing sm;
     RfVec3 *v = NULL, *n = NULL;
     size_t cap = 0;
-    RfStatus st = smoothing_init(r, &sm);
+    int smooth = 0; /* some face gets its normals from its neighbours */
+    for (size_t i = 0; i < r->nfaces && !smooth; i++)
+        smooth = !r->faces[i].has_vn && r->faces[i].group != 0;
+    memset(&sm, 0, sizeof sm);
+    RfStatus st = smooth ? smoothing_init(r, &sm) : RF_OK;
     if (st) {
         smoothing_free(&sm);
         return oom(r);
@@ -423,9 +545,6 @@ static RfStatus emit_faces(ObjReader *r)
     for (size_t i = 0; !st && i < r->nfaces; i++) {
         const Face *f = &r->faces[i];
         double ext2;
-        RfVec3 a = face_area(r, f, &ext2);
-        if (!(rf_vec3_length(a) > RF_SCENE_DEGENERATE_REL * ext2))
-            continue; /* zero area: nothing to see, and no normal to give */
         if ((size_t)f->n > cap) {
             free(v);
             free(n);
@@ -437,10 +556,12 @@ static RfStatus emit_faces(ObjReader *r)
                 break;
             }
         }
+        RfVec3 a = face_area(r, f, v, &ext2);
+        if (!(rf_vec3_length(a) > RF_SCENE_DEGENERATE_REL * ext2))
+            continue; /* zero area: nothing to see, and no normal to give */
         int normals = f->has_vn || f->group != 0;
         for (int k = 0; k < f->n; k++) {
             const Corner *c = &r->corners[f->first + (size_t)k];
-            v[k] = r->pos[c->v];
             if (f->has_vn)
                 n[k] = r->nrm[c->vn];
             else if (normals)
@@ -491,18 +612,28 @@ RfStatus rf__obj_read(const char *name, const char *text, size_t len, const RfOb
     r.material = -1;
     r.group = 1; /* smooth unless the file says `s off` */
     rf_lex_init(&r.lx, name, text, len, err, errsz);
-    while (!st && r.lx.tok.kind != RF_TOK_EOF) {
-        RfToken kw = r.lx.tok;
-        if (kw.kind != RF_TOK_WORD || !kw.bol) {
-            st = rf_lex_error(&r.lx, kw.line, kw.col, "expected an OBJ keyword at the start of a line, found %s",
-                              rf_lex_quote(&kw, q, sizeof q));
-            break;
+    /* line by line: OBJ statements end with their line (the fast path, or the statement
+     * readers on a lexer over that line alone) */
+    const char *p = text, *end = text + len;
+    for (int line = 1; !st && p < end; line++) {
+        const char *nl = memchr(p, '\n', (size_t)(end - p)), *le = nl ? nl : end;
+        if (!fast_line(&r, p, le, line)) {
+            rf_lex_init_at(&r.lx, name, p, (size_t)(le - p), line, err, errsz);
+            while (!st && r.lx.tok.kind != RF_TOK_EOF) {
+                RfToken kw = r.lx.tok;
+                if (kw.kind != RF_TOK_WORD || !kw.bol) {
+                    st = rf_lex_error(&r.lx, kw.line, kw.col, "expected an OBJ keyword at the start of a line, found %s",
+                                      rf_lex_quote(&kw, q, sizeof q));
+                    break;
+                }
+                rf_lex_advance(&r.lx);
+                st = read_statement(&r, &kw);
+                if (!st && !eol(&r.lx))
+                    st = rf_lex_error(&r.lx, r.lx.tok.line, r.lx.tok.col, "too many values for %s",
+                                      rf_lex_quote(&kw, q, sizeof q));
+            }
         }
-        rf_lex_advance(&r.lx);
-        st = read_statement(&r, &kw);
-        if (!st && !eol(&r.lx))
-            st = rf_lex_error(&r.lx, r.lx.tok.line, r.lx.tok.col, "too many values for %s",
-                              rf_lex_quote(&kw, q, sizeof q));
+        p = nl ? nl + 1 : end;
     }
     if (!st)
         st = emit_faces(&r);

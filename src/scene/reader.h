@@ -13,6 +13,11 @@ RfStatus rf__msgf(char *msg, size_t msgsz, RfStatus st, const char *fmt, ...)
 #endif
     ;
 
+/* Twice the vector area of a polygon (the sum of the fan's cross products about v[0]; equal to
+ * Newell's normal) and the largest squared distance of a vertex from v[0]: what the model's
+ * degeneracy test measures (scene.c). */
+RfVec3 rf__polygon_area_vector(const RfVec3 *v, int n, double *ext2);
+
 /* Checks and appends a primitive; a failure is reported at p->loc. */
 RfStatus rf__reader_add_prim(RfLexer *lx, RfScene *scene, const RfPrimitive *p);
 /* Appends one vertex (and its normal when n != NULL); *first gets its index when first_too. */

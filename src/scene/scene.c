@@ -2,6 +2,7 @@
  * (scene.h). */
 #include "refray/scene.h"
 #include "reader.h"
+#include "refray/bvh.h" /* RfAabb */
 #include "refray/numeric.h"
 #include "refray/transform.h"
 
@@ -174,15 +175,14 @@ RfStatus rf_scene_add_instance(RfScene *scene, int object, RfMat4 m, size_t *ind
 
 /* ---- checks ------------------------------------------------------------------------------ */
 
-/* Twice the vector area of a polygon (the sum of the fan's cross products about v[0]; equal
- * to Newell's normal), and the largest squared distance of a vertex from v[0]. */
-static RfVec3 polygon_area_vector(const RfVec3 *v, int n, double *ext2)
+RfVec3 rf__polygon_area_vector(const RfVec3 *v, int n, double *ext2)
 {
     RfVec3 sum = rf_vec3(0, 0, 0);
     *ext2 = 0.0;
     for (int i = 1; i < n; i++) {
         RfVec3 a = rf_vec3_sub(v[i], v[0]);
-        *ext2 = fmax(*ext2, rf_vec3_dot(a, a));
+        double d = rf_vec3_dot(a, a); /* finite (checked): no NaN for fmax to guard against */
+        *ext2 = d > *ext2 ? d : *ext2;
         if (i + 1 < n)
             sum = rf_vec3_add(sum, rf_vec3_cross(a, rf_vec3_sub(v[i + 1], v[0])));
     }
@@ -227,7 +227,7 @@ RfStatus rf_scene_check_primitive(const RfScene *scene, const RfPrimitive *p, ch
             if (!finite3(v[i]))
                 return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "%s: vertex %d is not finite", name, i + 1);
         double ext2;
-        RfVec3 nv = polygon_area_vector(v, n, &ext2);
+        RfVec3 nv = rf__polygon_area_vector(v, n, &ext2);
         if (!(rf_vec3_length(nv) > RF_SCENE_DEGENERATE_REL * ext2))
             return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE,
                         "degenerate %s: its vertices are collinear (zero area)", name);
@@ -267,7 +267,7 @@ RfStatus rf_scene_check_primitive(const RfScene *scene, const RfPrimitive *p, ch
 static int polygon_is_convex(const RfVec3 *v, int n)
 {
     double ext2;
-    RfVec3 nv = polygon_area_vector(v, n, &ext2);
+    RfVec3 nv = rf__polygon_area_vector(v, n, &ext2);
     double tol = RF_SCENE_DEGENERATE_REL * rf_vec3_length(nv) * ext2;
     for (int i = 0; i < n; i++) {
         RfVec3 e0 = rf_vec3_sub(v[(i + 1) % n], v[i]);
@@ -504,12 +504,11 @@ const char *rf_light_kind_name(RfLightKind kind)
 
 static void grow_box(RfVec3 *lo, RfVec3 *hi, RfVec3 c, double r)
 {
-    lo->x = fmin(lo->x, c.x - r);
-    lo->y = fmin(lo->y, c.y - r);
-    lo->z = fmin(lo->z, c.z - r);
-    hi->x = fmax(hi->x, c.x + r);
-    hi->y = fmax(hi->y, c.y + r);
-    hi->z = fmax(hi->z, c.z + r);
+    RfAabb b = {rf_vec3(c.x - r, c.y - r, c.z - r), rf_vec3(c.x + r, c.y + r, c.z + r)};
+    RfAabb a = {*lo, *hi};
+    a = rf_aabb_union(a, b);
+    *lo = a.lo;
+    *hi = a.hi;
 }
 
 int rf_scene_bounds(const RfScene *scene, RfVec3 *lo, RfVec3 *hi)
