@@ -1,0 +1,175 @@
+/* The tracer's acceleration structure against brute force on every shipped scene (issue 10):
+ * the BVH with its vector kernels, the same with the scalar kernels, and no BVH at all (every
+ * item tested with the double-precision kernels alone) must give the same answers bit for bit:
+ * the same primitive, t, point and normals for nearest hits and the same occlusion answers,
+ * ray by ray, and the same images. */
+#include <glob.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "refray/camera.h"
+#include "refray/render.h"
+#include "refray/scene_io.h"
+#include "rf_test.h"
+
+enum { VECTOR, SCALAR, BRUTE, KINDS };
+
+static RfStatus make_tracers(const RfScene *s, RfTracer *t[KINDS])
+{
+    for (int k = 0; k < KINDS; k++) {
+        RfTracerOptions o = rf_tracer_options_default();
+        o.threads = 2;
+        o.scalar = k == SCALAR;
+        o.brute_force = k == BRUTE;
+        RfStatus st = rf_tracer_create_opts(s, &o, &t[k]);
+        if (st != RF_OK)
+            return st;
+    }
+    return RF_OK;
+}
+
+static int same_hit(int pa, const RfSurfaceHit *a, int pb, const RfSurfaceHit *b)
+{
+    if (pa != pb)
+        return 0;
+    if (pa < 0)
+        return 1;
+    return a->t == b->t && a->material == b->material && a->front == b->front &&
+           memcmp(&a->point, &b->point, sizeof a->point) == 0 &&
+           memcmp(&a->normal, &b->normal, sizeof a->normal) == 0 &&
+           memcmp(&a->shading_normal, &b->shading_normal, sizeof a->shading_normal) == 0;
+}
+
+/* Rays of three kinds: camera rays on a grid, random rays through the scene's box, and rays
+ * leaving the surfaces the camera rays hit (reflection-like, from the offset origin). */
+static int scene_rays(const RfScene *s, const RfTracer *t, RfTestRng *rng, RfRay *rays, int max)
+{
+    int n = 0;
+    RfCamera cam;
+    RfWindow w = rf_scene_camera_window(&s->camera, 40, 30);
+    rf_camera_init(&cam, s->camera.eye, s->camera.target, s->camera.up, w.d, w.l, w.r, w.b, w.t, 40, 30);
+    RfVec3 lo, hi;
+    int bounded = rf_scene_bounds(s, &lo, &hi);
+    for (int y = 0; y < 30 && n < max; y++)
+        for (int x = 0; x < 40 && n < max; x++) {
+            RfRay r = rf_camera_ray(&cam, x + 0.5, y + 0.5, 0, 0);
+            rays[n++] = r;
+            RfSurfaceHit h;
+            if (n < max && rf_tracer_intersect(t, r, 0, HUGE_VAL, &h) >= 0) {
+                RfVec3 d = rf_vec3(rf_test_uniform(rng, -1, 1), rf_test_uniform(rng, -1, 1), rf_test_uniform(rng, -1, 1));
+                if (rf_vec3_dot(d, h.normal) < 0)
+                    d = rf_vec3_neg(d);
+                rays[n++] = rf_ray(rf_ray_offset_origin(h.point, h.normal, d, 0), d);
+            }
+        }
+    while (bounded && n < max) {
+        RfVec3 o = rf_vec3(rf_test_uniform(rng, lo.x, hi.x), rf_test_uniform(rng, lo.y, hi.y), rf_test_uniform(rng, lo.z, hi.z));
+        RfVec3 d = rf_vec3(rf_test_uniform(rng, -1, 1), rf_test_uniform(rng, -1, 1), rf_test_uniform(rng, -1, 1));
+        if (n % 5 == 0) /* axis-parallel */
+            d = rf_vec3(0, n % 2 ? 1 : -1, 0);
+        rays[n++] = rf_ray(o, d);
+    }
+    return n;
+}
+
+static void t_accel_scenes_vs_brute_force(void)
+{
+    glob_t g;
+    const char *pats[] = {"scenes/*.rf", "scenes/*.obj", "scenes/spd/*.nff", "scenes/spd/*.nff.gz"};
+    int flags = 0, scenes = 0;
+    for (size_t i = 0; i < sizeof pats / sizeof pats[0]; i++, flags = GLOB_APPEND)
+        glob(pats[i], flags, NULL, &g);
+    for (size_t i = 0; i < g.gl_pathc; i++) {
+        const char *path = g.gl_pathv[i];
+        RfScene s;
+        char err[512];
+        RfTracer *t[KINDS] = {NULL, NULL, NULL};
+        RF_CHECK_EQ_INT(rf_scene_load(path, NULL, &s, err, sizeof err), RF_OK);
+        if (make_tracers(&s, t) != RF_OK) {
+            rf_test_fail(__FILE__, __LINE__, "%s: tracers", path);
+            continue;
+        }
+        /* brute force costs (rendered triangles) tests per ray: keep each scene under ~3 M */
+        RfTriangleCount tc = rf_scene_triangle_count(&s);
+        long work = (long)(tc.rendered + s.prim_count) + 1;
+        int max = (int)(3000000L / work);
+        max = max > 2400 ? 2400 : max < 16 ? 16 : max;
+        RfRay *rays = malloc(sizeof *rays * (size_t)max);
+        RfTestRng rng = {77 + i};
+        int n = scene_rays(&s, t[VECTOR], &rng, rays, max), bad = 0;
+        for (int k = 0; k < n && bad < 3; k++) {
+            RfSurfaceHit h[KINDS];
+            int p[KINDS];
+            double dist = rf_test_uniform(&rng, 0.1, 20);
+            for (int m = 0; m < KINDS; m++)
+                p[m] = rf_tracer_intersect(t[m], rays[k], 0, HUGE_VAL, &h[m]);
+            int occ[KINDS];
+            for (int m = 0; m < KINDS; m++)
+                occ[m] = rf_tracer_occluded(t[m], rays[k], 0, dist);
+            rf_test_checks++;
+            for (int m = 1; m < KINDS; m++)
+                if (!same_hit(p[0], &h[0], p[m], &h[m]) || occ[0] != occ[m]) {
+                    rf_test_fail(__FILE__, __LINE__, "%s ray %d: BVH prim %d t %.17g occluded %d, %s prim %d t %.17g occluded %d",
+                                 path, k, p[0], p[0] >= 0 ? h[0].t : 0.0, occ[0], m == SCALAR ? "scalar" : "brute force",
+                                 p[m], p[m] >= 0 ? h[m].t : 0.0, occ[m]);
+                    bad++;
+                    break;
+                }
+        }
+        free(rays);
+        for (int m = 0; m < KINDS; m++)
+            rf_tracer_free(t[m]);
+        rf_scene_free(&s);
+        scenes++;
+    }
+    globfree(&g);
+    RF_CHECK(scenes >= 18);
+}
+
+/* Small renders of every shipped scene: the scalar kernels and brute force give the image of
+ * the vector kernels, bit for bit (brute force where it stays cheap). */
+static void t_accel_images(void)
+{
+    glob_t g;
+    const char *pats[] = {"scenes/*.rf", "scenes/spd/*.nff", "scenes/spd/*.nff.gz"};
+    int flags = 0;
+    for (size_t i = 0; i < sizeof pats / sizeof pats[0]; i++, flags = GLOB_APPEND)
+        glob(pats[i], flags, NULL, &g);
+    for (size_t i = 0; i < g.gl_pathc; i++) {
+        RfScene s;
+        char err[512];
+        if (rf_scene_load(g.gl_pathv[i], NULL, &s, err, sizeof err) != RF_OK) {
+            rf_test_fail(__FILE__, __LINE__, "%s", err);
+            continue;
+        }
+        RfTriangleCount tc = rf_scene_triangle_count(&s);
+        RfImage img[KINDS];
+        for (int m = 0; m < KINDS; m++) {
+            RfRenderOptions o = rf_render_options_default();
+            RfRenderStats st;
+            o.width = 40;
+            o.height = 30;
+            o.threads = 2;
+            o.samples = 1;
+            o.accel.scalar = m == SCALAR;
+            o.accel.brute_force = m == BRUTE;
+            img[m].data = NULL;
+            if (m == BRUTE && tc.rendered + s.prim_count > 12000)
+                continue;
+            RF_CHECK_EQ_INT(rf_render(&s, &o, &img[m], &st), RF_OK);
+            if (m > 0 && img[m].data && img[0].data)
+                RF_CHECK(memcmp(img[0].data, img[m].data, sizeof(float) * 3 * 40 * 30) == 0);
+        }
+        for (int m = 0; m < KINDS; m++)
+            if (img[m].data)
+                rf_image_free(&img[m]);
+        rf_scene_free(&s);
+    }
+    globfree(&g);
+}
+
+const RfTest rf_tests_accel[] = {
+    {"accel_scenes_vs_brute_force", t_accel_scenes_vs_brute_force},
+    {"accel_images_identical", t_accel_images},
+    RF_TEST_END,
+};
