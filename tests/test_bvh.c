@@ -42,7 +42,7 @@ static int ball_hit(void *ctx, uint64_t key, const RfBvhRay *r, double t_min, do
     int i = (int)(key - 1) - s->n_tris;
     if (inclusive)
         t_max = nextafter(t_max, HUGE_VAL);
-    if (!rf_intersect_sphere(r->wr.ray, s->balls[i], RF_SPHERE_STABLE, t_min, t_max, &h))
+    if (!rf_intersect_sphere(r->ray, s->balls[i], RF_SPHERE_STABLE, t_min, t_max, &h))
         return 0;
     *t = h.t;
     return 1;

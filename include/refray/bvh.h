@@ -99,9 +99,12 @@ void rf_bvh_free(RfBvh *bvh);
 /* Bytes held by the built structure (nodes, triangle blocks, item keys). */
 size_t rf_bvh_bytes(const RfBvh *bvh);
 
-/* A ray prepared for one BVH: the watertight set-up (§3.5.3) and the float slab and filter
- * constants, rounded so that both tests stay conservative. */
+/* A ray prepared for one BVH: the float slab constants, rounded so that the test stays
+ * conservative, and — made by the traversal when it first reaches a triangle — the watertight
+ * set-up (§3.5.3) and the filter's constants. */
 typedef struct {
+    RfRay ray;
+    int tri_ready;     /* wr and the filter's fields are set (always when a triangle won) */
     RfWatertightRay wr;
     float org[2][3];   /* [0]: origin rounded for the near planes, [1]: for the far planes */
     float inv[2][3];   /* 1/dir shrunk ([0], near) and grown ([1], far) by a few ulps */
@@ -134,10 +137,10 @@ typedef struct {
 /* Improves *best with the nearest hit at t >= t_min: a hit (t, key) wins when t < best->t or
  * t == best->t and key < best->key. Triangles hidden by their `sides` do not count. Returns 1
  * when best changed. */
-int rf_bvh_nearest(const RfBvh *bvh, const RfBvhRay *ray, double t_min, RfBvhHit *best,
+int rf_bvh_nearest(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best,
                    RfBvhItemFn fn, void *ctx);
 /* 1 when anything is hit at t_min <= t < t_max, seen from either side (shadow rays). */
-int rf_bvh_occluded(const RfBvh *bvh, const RfBvhRay *ray, double t_min, double t_max,
+int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,
                     RfBvhItemFn fn, void *ctx);
 
 #ifdef __cplusplus

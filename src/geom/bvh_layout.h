@@ -3,6 +3,7 @@
 #ifndef RF_GEOM_BVH_LAYOUT_H
 #define RF_GEOM_BVH_LAYOUT_H
 
+#include <math.h>
 #include <stdint.h>
 #include <string.h>
 
@@ -62,6 +63,20 @@ static inline float rf__round_up(double x)
 {
     float f = (float)x;
     return (double)f < x ? rf__float_above(f) : f;
+}
+
+/* Without branches, a float at least (at most) x: x rounded to nearest and moved by |f| 2^-23 +
+ * 2^-149, which covers that rounding (for |x| up to FLT_MAX; beyond, inf). Looser than the
+ * directed roundings above by an ulp or two, for values computed per ray. */
+static inline float rf__widen_up(double x)
+{
+    float f = (float)x;
+    return f + (fabsf(f) * 0x1p-23f + 0x1p-149f);
+}
+static inline float rf__widen_down(double x)
+{
+    float f = (float)x;
+    return f - (fabsf(f) * 0x1p-23f + 0x1p-149f);
 }
 
 #endif

@@ -26,49 +26,57 @@ static inline float fmaxf_(float a, float b) { return b > a ? b : a; }
 
 void rf_bvh_ray_init(const RfBvh *bvh, RfRay ray, RfBvhRay *r)
 {
-    r->wr = rf_watertight_ray(ray);
+    (void)bvh;
+    r->ray = ray;
+    r->tri_ready = 0;
     const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
     const double d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
-    double omax = 0.0;
     for (int a = 0; a < 3; a++) {
-        double inv = 1.0 / d[a]; /* +-inf for +-0 */
-        int neg = signbit(inv) != 0;
-        float fi = (float)inv;
-        /* Slab distances (plane - origin) * inv, rounded toward "hit": the near plane's origin
-         * rounded so the difference can only shrink, the far plane's so it can only grow, and
+        /* Slab distances (plane - origin) * inv, rounded toward "hit" (docs/performance.md):
+         * the near plane's origin moved so the difference can only shrink, the far plane's so
+         * it can only grow (rf__widen_up/down: past the rounding of o to float), and
          * 1/dir shrunk / grown by 8 ulps, which covers the roundings of the conversion, the
-         * difference and the product (docs/performance.md). A zero component has inv = inf:
-         * the near factor is clamped to 2^127 (still a lower bound) so that a finite difference
-         * stays finite; the far factor may be inf. */
-        float near = fi * (1.0f - 0x1p-21f), far = fi * (1.0f + 0x1p-21f);
-        if (!(fabsf(near) <= 0x1p127f))
-            near = neg ? -0x1p127f : 0x1p127f;
+         * difference and the product. A zero component has inv = inf: the near factor is
+         * clamped to 2^127 (still a lower bound) so that a finite difference stays finite; the
+         * far factor may be inf. No branches: they would be guesses per ray. */
+        int neg = signbit(d[a]) != 0; /* the sign of 1/d, without waiting for the division */
+        float up = rf__widen_up(o[a]), down = rf__widen_down(o[a]);
         r->near_hi[a] = neg;
-        r->inv[0][a] = near;
-        r->inv[1][a] = far;
-        /* d > 0: the near plane is lo, t = (lo - o) / d is lowered by an origin rounded up */
-        float up = rf__round_up(o[a]), down = rf__round_down(o[a]);
         r->org[0][a] = neg ? down : up;
         r->org[1][a] = neg ? up : down;
-        double ao = fabs(o[a]);
-        omax = ao > omax ? ao : omax;
+        float fi = (float)(1.0 / d[a]); /* +-inf for +-0 */
+        float near = fi * (1.0f - 0x1p-21f), far = fi * (1.0f + 0x1p-21f);
+        r->inv[0][a] = fabsf(near) <= 0x1p127f ? near : neg ? -0x1p127f : 0x1p127f;
+        r->inv[1][a] = far;
     }
-    /* The filter (docs/performance.md): every ray-space coordinate computed in float lies
-     * within delta = 9 u (vmax + |o|max) of the double test's, so each edge function lies within
-     * B = 4.2 m delta + 4.2 u m^2 + 2.1 delta^2 of the exact one whose sign the double test
-     * takes (m: the largest float coordinate of the triangle). The slack over 4, 4, 2 covers
-     * the rounding of B itself; 2^-140 and 2^-120 cover underflow. */
+}
+
+/* The triangle tests' set-up, made when the first triangle block is reached (a ray that meets
+ * only boxes, spheres or nothing does not pay for it): the watertight shear and the filter.
+ * The filter (docs/performance.md): every ray-space coordinate computed in float lies within
+ * delta = 9 u (vmax + |o|max) of the double test's, so each edge function lies within
+ * B = 4.2 m delta + 4.2 u m^2 + 2.1 delta^2 of the exact one whose sign the double test takes
+ * (m: the largest float coordinate of the triangle). The slack over 4, 4, 2 covers the rounding
+ * of B itself; 2^-140 and 2^-120 cover underflow. */
+static void tri_setup(const RfBvh *bvh, RfBvhRay *r)
+{
+    const double o[3] = {r->ray.origin.x, r->ray.origin.y, r->ray.origin.z};
+    r->wr = rf_watertight_ray(r->ray);
     r->fo[0] = (float)o[r->wr.kx];
     r->fo[1] = (float)o[r->wr.ky];
     r->fo[2] = (float)o[r->wr.kz];
     r->fsx = (float)r->wr.sx;
     r->fsy = (float)r->wr.sy;
+    double omax = fabs(o[0]);
+    omax = fabs(o[1]) > omax ? fabs(o[1]) : omax;
+    omax = fabs(o[2]) > omax ? fabs(o[2]) : omax;
     double R = bvh->vmax + omax;
     r->filter = R <= 0x1p60;
     double delta = (9.0 * U32 * R + 0x1p-140) * (1.0 + 0x1p-20);
-    r->k1 = rf__round_up(4.2 * delta);
-    r->k2 = rf__round_up(4.2 * U32);
-    r->k3 = rf__round_up(2.1 * delta * delta + 0x1p-120);
+    r->k1 = rf__widen_up(4.2 * delta);
+    r->k2 = rf__widen_up(4.2 * U32);
+    r->k3 = rf__widen_up(2.1 * delta * delta + 0x1p-120);
+    r->tri_ready = 1;
 }
 
 /* ---- traversal: node and triangle kernels ------------------------------------------------ */
@@ -214,10 +222,12 @@ typedef struct {
 /* The leaf's triangles: the float filter, then the double watertight test for what is left.
  * any = 1: returns 1 at the first hit in [t_min, best->t). any = 0: improves *best by the
  * (t, key) rule and the triangles' sides; returns 1 when it did. */
-static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r, double t_min,
+static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double t_min,
                             RfBvhHit *best, int any)
 {
     int improved = 0;
+    if (!r->tri_ready)
+        tri_setup(bvh, r);
     const RfBvhTriBlock *blk = &bvh->blocks[REF_FIRST(ref)], *end = blk + REF_COUNT(ref);
     for (; blk < end; blk++) {
         for (int l = 3; l < 8; l++)
@@ -240,7 +250,7 @@ static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r, d
             unsigned sides = blk->user[k] >> 30;
             if (sides != RF_BVH_SEE_BOTH) {
                 RfVec3 nrm = rf_triangle_unit_normal(&blk->tri[k]);
-                int front = rf_vec3_dot(r->wr.ray.dir, nrm) < 0.0;
+                int front = rf_vec3_dot(r->ray.dir, nrm) < 0.0;
                 if (front != (sides == RF_BVH_SEE_FRONT))
                     continue;
             }
@@ -273,7 +283,7 @@ static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r,
     return improved;
 }
 
-static inline int traverse(const RfBvh *bvh, const RfBvhRay *r, double t_min, RfBvhHit *best,
+static inline int traverse(const RfBvh *bvh, RfBvhRay *r, double t_min, RfBvhHit *best,
                            RfBvhItemFn fn, void *ctx, int any)
 {
     if (bvh->node_count == 0)
@@ -284,8 +294,8 @@ static inline int traverse(const RfBvh *bvh, const RfBvhRay *r, double t_min, Rf
 #endif
     Entry stack[STACK];
     int top = 0, found = 0;
-    const float tmin = rf__round_down(t_min);
-    float tmax = rf__round_up(best->t);
+    const float tmin = rf__widen_down(t_min);
+    float tmax = rf__widen_up(best->t);
     uint32_t cur = REF_INNER(0);
     for (;;) {
         if (REF_KIND(cur) == KIND_INNER) {
@@ -329,7 +339,7 @@ static inline int traverse(const RfBvh *bvh, const RfBvhRay *r, double t_min, Rf
                 if (any)
                     return 1;
                 found = 1;
-                tmax = rf__round_up(best->t);
+                tmax = rf__widen_up(best->t);
             }
         }
         /* the next subtree that can still hold a hit as near as the best (ties count) */
@@ -344,13 +354,13 @@ static inline int traverse(const RfBvh *bvh, const RfBvhRay *r, double t_min, Rf
     }
 }
 
-int rf_bvh_nearest(const RfBvh *bvh, const RfBvhRay *ray, double t_min, RfBvhHit *best,
+int rf_bvh_nearest(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best,
                    RfBvhItemFn fn, void *ctx)
 {
     return traverse(bvh, ray, t_min, best, fn, ctx, 0);
 }
 
-int rf_bvh_occluded(const RfBvh *bvh, const RfBvhRay *ray, double t_min, double t_max,
+int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,
                     RfBvhItemFn fn, void *ctx)
 {
     RfBvhHit lim = {t_max, 0, NULL, 0};

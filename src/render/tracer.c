@@ -414,7 +414,7 @@ static int hit_instance(Query *q, const RfPrimitive *p, RfRay ray, double t_min,
 
 /* Intersects one item with the double-precision kernels of §3.5 at t in [t_min, t_max); on a
  * hit keeps its details in q and returns 1 with *t. */
-static int hit_item(Query *q, Item it, RfRay ray, double t_min, double t_max, double *t)
+static int hit_item(Query *q, Item it, RfRay ray, const RfWatertightRay *wr, double t_min, double t_max, double *t)
 {
     const RfScene *s = q->tracer->scene;
     const RfPrimitive *p = &s->prims[it.prim];
@@ -435,8 +435,12 @@ again:
     case RF_PRIM_TRIANGLE:
     case RF_PRIM_POLYGON:
         if (it.sub >= 0) {
-            RfWatertightRay wr = rf_watertight_ray(ray);
-            ok = rf_intersect_triangle_watertight(&wr, item_triangle(s, it), t_min, t_max, &h);
+            RfWatertightRay own;
+            if (!wr) {
+                own = rf_watertight_ray(ray);
+                wr = &own;
+            }
+            ok = rf_intersect_triangle_watertight(wr, item_triangle(s, it), t_min, t_max, &h);
         } else {
             RfVec3 n = q->tracer->poly_normal[it.prim];
             RfPlane pl = {n, rf_vec3_dot(n, vertex(s, p, 0))};
@@ -477,16 +481,17 @@ again:
 
 /* Tests an item against the limit (t_lim, key_lim): a hit counts when it is nearer, or as near
  * with a lower key (the tie rule; key_lim = 0: t < t_lim). */
-static int hit_key(Query *q, uint64_t key, RfRay ray, double t_min, double t_lim, uint64_t key_lim, double *t)
+static int hit_key(Query *q, uint64_t key, RfRay ray, const RfWatertightRay *wr, double t_min, double t_lim,
+                   uint64_t key_lim, double *t)
 {
     double t_max = !q->shadow && key < key_lim ? nextafter(t_lim, HUGE_VAL) : t_lim;
-    return hit_item(q, key_item(key), ray, t_min, t_max, t);
+    return hit_item(q, key_item(key), ray, wr, t_min, t_max, t);
 }
 
 /* The BVH's callback for the items it does not intersect itself. */
 static int bvh_item(void *ctx, uint64_t key, const RfBvhRay *r, double t_min, double t_max, int inclusive, double *t)
 {
-    return hit_item(ctx, key_item(key), r->wr.ray, t_min, inclusive ? nextafter(t_max, HUGE_VAL) : t_max, t);
+    return hit_item(ctx, key_item(key), r->ray, NULL, t_min, inclusive ? nextafter(t_max, HUGE_VAL) : t_max, t);
 }
 
 /* The nearest (or, shadow = 1, any) hit in one level at t >= t_min within the limit
@@ -499,7 +504,7 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
     for (int u = 0; u < lv->unbounded_count; u++) {
         uint64_t key = item_key(lv->items[lv->unbounded[u]]);
         double t;
-        if (hit_key(q, key, ray, t_min, bt, bk, &t)) {
+        if (hit_key(q, key, ray, NULL, t_min, bt, bk, &t)) {
             if (q->shadow)
                 return 1;
             bt = t, bk = key, found = 1;
@@ -510,10 +515,11 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
     RfBvhRay br;
     if (q->tracer->opt.brute_force) {
         /* every item, in key order, with the double kernels alone: the reference for the BVH */
+        RfWatertightRay wr = rf_watertight_ray(ray);
         for (int j = 0; j < lv->bvh_count; j++) {
             uint64_t key = item_key(lv->items[lv->bvh_items[j]]);
             double t;
-            if (hit_key(q, key, ray, t_min, bt, bk, &t)) {
+            if (hit_key(q, key, ray, &wr, t_min, bt, bk, &t)) {
                 if (q->shadow)
                     return 1;
                 bt = t, bk = key, found = 1;
