@@ -63,7 +63,7 @@ TEST := $(BUILD)/refray-tests
 RASTER := $(BUILD)/refray-raster
 VERIFY := $(BUILD)/refray-verify
 
-.PHONY: all test demo bench install clean report stress
+.PHONY: all test demo bench bench-run install clean report stress FORCE
 all: $(LIB) $(BIN) $(RASTER) $(VERIFY)
 
 # Dependencies: checked (and installed) once per build folder, then the flags are cached.
@@ -80,11 +80,15 @@ $(BUILD)/config.mk: tools/deps.sh Makefile
 # V=1 shows the full commands
 Q := $(if $(V),,@)
 
-$(BUILD)/gen/build_info.h: $(BUILD)/config.mk
+# rewritten only when the flags change, and every object depends on it: a change of OPT, ARCH,
+# SAN or CFLAGS rebuilds everything (the flags decide numeric results, DESIGN.md)
+$(BUILD)/gen/build_info.h: $(BUILD)/config.mk FORCE
 	@mkdir -p $(dir $@)
-	@echo '#define RF_BUILD_FLAGS "$(strip $(NUMERIC_FLAGS))"' > $@.tmp && mv $@.tmp $@
+	@echo '#define RF_BUILD_FLAGS "$(strip $(NUMERIC_FLAGS))"' > $@.tmp
+	@cmp -s $@.tmp $@ && rm -f $@.tmp || mv $@.tmp $@
+FORCE:
 
-$(BUILD)/obj/%.o: %.c | $(BUILD)/gen/build_info.h
+$(BUILD)/obj/%.o: %.c $(BUILD)/gen/build_info.h
 	@mkdir -p $(dir $@)
 	@$(if $(Q),echo "  CC      $<")
 	$(Q)$(CC) $(CFLAGS_ALL) -MMD -MP -c $< -o $@
@@ -106,7 +110,10 @@ $(RASTER): $(call obj,$(RASTER_SRC)) $(BUILD)/obj/src/cli/args.o $(LIB)
 	@$(if $(Q),echo "  LINK    $@")
 	$(Q)$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL) $(OSMESA_LIBS)
 
-$(MESHBENCH): compare/mesh_bench.c $(LIB) | $(BUILD)/gen/build_info.h
+# relinked when Embree appears or goes (the stamp's name says which)
+$(BUILD)/gen/embree-$(if $(EMBREE),yes,no):
+	@mkdir -p $(dir $@) && rm -f $(BUILD)/gen/embree-* && touch $@
+$(MESHBENCH): compare/mesh_bench.c $(LIB) $(BUILD)/gen/build_info.h $(BUILD)/gen/embree-$(if $(EMBREE),yes,no)
 	@mkdir -p $(dir $@)
 	@$(if $(Q),echo "  LINK    $@$(if $(EMBREE), (with Embree))")
 	$(Q)$(CC) $(CFLAGS_ALL) $(if $(EMBREE),-DRF_HAVE_EMBREE) $(LDFLAGS_ALL) -o $@ $< $(LIB) $(LDLIBS_ALL) $(if $(EMBREE),-lembree3)
@@ -146,7 +153,12 @@ report: $(BIN) $(RASTER)
 demo: $(BIN)
 	@sh tools/demo.sh $(BIN)
 
-bench: $(BIN) $(MESHBENCH) $(MAKEMESH)
+# the anchors (Embree, POV-Ray, the CGAL demo data) are installed first when missing (as root),
+# then make runs again so that the harness is built with what is there
+bench:
+	@sh tools/deps.sh bench
+	@$(MAKE) --no-print-directory bench-run
+bench-run: $(BIN) $(MESHBENCH) $(MAKEMESH)
 	@sh tools/bench.sh $(BIN) $(MESHBENCH) $(MAKEMESH)
 
 install: all

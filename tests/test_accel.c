@@ -4,6 +4,7 @@
  * the same primitive, t, point and normals for nearest hits and the same occlusion answers,
  * ray by ray, and the same images. */
 #include <glob.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -168,7 +169,45 @@ static void t_accel_images(void)
     globfree(&g);
 }
 
+/* The tie rule on a shared edge: a unit square in z = 0 cut along its diagonal into two
+ * triangles of different materials; rays straight down through dyadic points of the diagonal
+ * meet both at t = 1 exactly, and the lower primitive index wins, whichever triangle comes first
+ * in the file, with the BVH as with brute force. */
+static void t_accel_tie_rule(void)
+{
+    for (int order = 0; order < 2; order++) {
+        char text[512];
+        const char *a = "polygon 3  0 0 0  1 0 0  1 1 0", *b = "polygon 3  0 0 0  1 1 0  0 1 0";
+        snprintf(text, sizeof text,
+                 "camera eye 0.5 0.5 3  target 0.5 0.5 0  up 0 1 0  fov 40\n"
+                 "material first kd 1 0 0\n%s\nmaterial second kd 0 1 0\n%s\n",
+                 order ? b : a, order ? a : b);
+        RfScene s;
+        char err[512];
+        RF_CHECK_EQ_INT(rf_scene_read_rf("tie.rf", text, strlen(text), &s, err, sizeof err), RF_OK);
+        RfTracer *t[KINDS];
+        RF_CHECK_EQ_INT(make_tracers(&s, t), RF_OK);
+        int ties = 0, ok = 1;
+        for (int k = 1; k < 64; k++) {
+            double x = k / 64.0;
+            RfRay r = rf_ray(rf_vec3(x, x, 1), rf_vec3(0, 0, -1));
+            for (int m = 0; m < KINDS; m++) {
+                RfSurfaceHit h;
+                int p = rf_tracer_intersect(t[m], r, 0, HUGE_VAL, &h);
+                ok &= p == 0 && h.t == 1.0 && h.material == 0;
+                ties += m == 0 && p == 0;
+            }
+        }
+        RF_CHECK(ok);
+        RF_CHECK_EQ_INT(ties, 63);
+        for (int m = 0; m < KINDS; m++)
+            rf_tracer_free(t[m]);
+        rf_scene_free(&s);
+    }
+}
+
 const RfTest rf_tests_accel[] = {
+    {"accel_tie_rule", t_accel_tie_rule},
     {"accel_scenes_vs_brute_force", t_accel_scenes_vs_brute_force},
     {"accel_images_identical", t_accel_images},
     RF_TEST_END,

@@ -676,13 +676,23 @@ static void t_golden_images(void)
             if (ref.width == img.width && ref.height == img.height && ref.channels == 3) {
                 size_t n = (size_t)img.width * (size_t)img.height * 3;
                 double maxe = 0, sum = 0;
+                int changed = 0;
                 for (size_t k = 0; k < n; k++) {
                     double e = fabs((double)img.data[k] - (double)ref.data[k]);
                     maxe = fmax(maxe, e);
                     sum += e;
+                    changed += memcmp(&img.data[k], &ref.data[k], sizeof(float)) != 0;
                 }
                 RF_CHECK_NEAR(maxe, 0, 0, 1e-5);
                 RF_CHECK_NEAR(sum / (double)n, 0, 0, 1e-6);
+                /* The references predate issue 10's tie rule (of two hits at the same t the lower
+                 * primitive wins, whatever the BVH) and its new BVH: on this toolchain not one
+                 * value changed; no ray of these scenes meets two primitives at the same t with
+                 * different shading. Another libm may move last bits: then this count names them. */
+                if (changed)
+                    fprintf(stderr, "  %s: %d of %zu values differ in some bit from the stored reference\n",
+                            goldens[g].golden, changed, n);
+                RF_CHECK_EQ_INT(changed, 0);
             }
             rf_image_free(&img);
         }

@@ -3,7 +3,27 @@
 # as root it installs the Debian packages; otherwise it prints the one apt-get line and fails.
 # Usage: tools/deps.sh check   (exit 0 when everything is present, quiet)
 #        tools/deps.sh         (install or print the line)
+#        tools/deps.sh bench   (the benchmark's anchors, optional: Embree, POV-Ray and the CGAL
+#                               demo data; installed as root, else the line is printed; never fails)
 set -u
+BENCH_PACKAGES="libembree-dev povray libcgal-demo"
+
+if [ "${1:-}" = bench ]; then
+    m=""
+    [ -f /usr/include/embree3/rtcore.h ] || m="$m libembree-dev"
+    command -v povray >/dev/null 2>&1 || m="$m povray"
+    [ -f /usr/share/doc/libcgal-demo/data.tar.gz ] || m="$m libcgal-demo"
+    [ -z "$m" ] && exit 0
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+        echo "refray bench: installing the anchors:$m" >&2
+        export DEBIAN_FRONTEND=noninteractive
+        { apt-get update -qq && apt-get install -y -qq --no-install-recommends $m; } >/dev/null 2>&1 ||
+            echo "refray bench: apt-get failed; the benchmark runs without:$m" >&2
+    else
+        echo "refray bench: the anchors are missing; for the full comparison run: sudo apt-get install$m" >&2
+    fi
+    exit 0
+fi
 PACKAGES="build-essential pkg-config libcjson-dev libpng-dev libopenexr-dev libosmesa6-dev \
 libglfw3-dev libcgal-dev libgmp-dev libmpfr-dev libcairo2-dev libfontconfig-dev zlib1g-dev"
 

@@ -564,8 +564,8 @@ static int make_refs(void *ctx, int chunk, int thread)
         for (int a = 0; a < 3; a++) {
             if (!isfinite(lo3[a]) || !isfinite(hi3[a]) || !(lo3[a] <= hi3[a]))
                 return j->bad = 1;
-            j->refs[i].lo[a] = rf__round_down(lo3[a]);
-            j->refs[i].hi[a] = rf__round_up(hi3[a]);
+            j->refs[i].lo[a] = rf__widen_down(lo3[a]);
+            j->refs[i].hi[a] = rf__widen_up(hi3[a]);
         }
         j->refs[i].lo[3] = j->refs[i].hi[3] = 0.0f;
     }

@@ -42,32 +42,9 @@ struct RfBvhTriBlock {
     uint32_t pad2[8];
 };
 
-/* The next float above f (f not NaN, not +inf): one step of the bit pattern. */
-static inline float rf__float_above(float f)
-{
-    uint32_t u;
-    memcpy(&u, &f, sizeof u);
-    if ((u & 0x7fffffffu) == 0)
-        return 0x1p-149f;
-    u = (u >> 31) ? u - 1 : u + 1;
-    memcpy(&f, &u, sizeof f);
-    return f;
-}
-/* x rounded to a float toward -inf / +inf. */
-static inline float rf__round_down(double x)
-{
-    float f = (float)x;
-    return (double)f > x ? -rf__float_above(-f) : f;
-}
-static inline float rf__round_up(double x)
-{
-    float f = (float)x;
-    return (double)f < x ? rf__float_above(f) : f;
-}
-
-/* Without branches, a float at least (at most) x: x rounded to nearest and moved by |f| 2^-23 +
- * 2^-149, which covers that rounding (for |x| up to FLT_MAX; beyond, inf). Looser than the
- * directed roundings above by an ulp or two, for values computed per ray. */
+/* A float at least (at most) x, without branches: x rounded to nearest and moved by
+ * |f| 2^-23 + 2^-149, more than that rounding can have moved it (for |x| up to FLT_MAX;
+ * beyond, +-inf): the outward rounding of boxes and of the ray's slab constants. */
 static inline float rf__widen_up(double x)
 {
     float f = (float)x;

@@ -32,12 +32,13 @@ static Item key_item(uint64_t key)
 /* The items of the world, or of one object in its own space (§4.8). */
 typedef struct {
     RfBvh bvh;
-    Item *items;         /* every item of the level, in key order */
+    Item *items;         /* every item of the level, in key order (kept only by brute force) */
     int item_count;
     int *bvh_items;      /* the BVH's items: items[bvh_items[j]] */
     int bvh_count;
     RfAabb box;          /* of the bounded items (objects: for their instances' boxes) */
-    int *unbounded;      /* items tested for every ray: planes, instances of unbounded objects */
+    uint64_t *unbounded; /* keys of the items tested for every ray: planes, instances of
+                            unbounded objects */
     int unbounded_count;
     int state;           /* objects: 0 not built, 1 building, 2 built */
 } Level;
@@ -248,10 +249,10 @@ static RfStatus build_level(RfTracer *t, size_t first, size_t end, int world, Le
                 lv->bvh_items[bvh_count++] = key;
                 lv->box = rf_aabb_union(lv->box, b);
             } else
-                lv->unbounded[lv->unbounded_count++] = key;
+                lv->unbounded[lv->unbounded_count++] = item_key(it);
         } else if (p->type == RF_PRIM_PLANE) {
             lv->items[lv->item_count++] = it;
-            lv->unbounded[lv->unbounded_count++] = key;
+            lv->unbounded[lv->unbounded_count++] = item_key(it);
         } else if (p->type == RF_PRIM_POLYGON && !(p->flags & RF_PRIM_NONCONVEX)) {
             lv->box = rf_aabb_union(lv->box, item_box(scene, it));
             for (int k = 0; k + 2 < p->u.poly.count; k++) {
@@ -280,7 +281,13 @@ static RfStatus build_level(RfTracer *t, size_t first, size_t end, int world, Le
         return RF_OK;
     Describe d = {t, lv};
     RfBvhDesc desc = {bvh_count, describe_item, &d, t->opt.threads, t->opt.scalar};
-    return rf_bvh_build(&lv->bvh, &desc);
+    st = rf_bvh_build(&lv->bvh, &desc);
+    /* the BVH holds the keys: the item tables were for building it */
+    free(lv->items);
+    free(lv->bvh_items);
+    lv->items = NULL;
+    lv->bvh_items = NULL;
+    return st;
 }
 
 /* One object's level, built once however many instances place it (§4.8). */
@@ -315,10 +322,13 @@ RfStatus rf_tracer_create_opts(const RfScene *scene, const RfTracerOptions *opt,
         return RF_ERR_NOMEM;
     t->scene = scene;
     t->opt = opt ? *opt : rf_tracer_options_default();
-    t->poly_normal = calloc(scene->prim_count ? scene->prim_count : 1, sizeof *t->poly_normal);
+    int nonconvex = 0; /* only non-convex polygons need a normal of their own */
+    for (size_t i = 0; i < scene->prim_count && !nonconvex; i++)
+        nonconvex = scene->prims[i].type == RF_PRIM_POLYGON && (scene->prims[i].flags & RF_PRIM_NONCONVEX);
+    t->poly_normal = nonconvex ? calloc(scene->prim_count, sizeof *t->poly_normal) : NULL;
     t->objects = calloc(scene->object_count ? scene->object_count : 1, sizeof *t->objects);
-    RfStatus st = t->poly_normal && t->objects ? build_level(t, 0, scene->prim_count, 1, &t->world)
-                                               : RF_ERR_NOMEM;
+    RfStatus st = (t->poly_normal || !nonconvex) && t->objects ? build_level(t, 0, scene->prim_count, 1, &t->world)
+                                                               : RF_ERR_NOMEM;
     if (st != RF_OK) {
         rf_tracer_free(t);
         return st;
@@ -335,10 +345,12 @@ RfStatus rf_tracer_create(const RfScene *scene, RfTracer **out)
 size_t rf_tracer_bytes(const RfTracer *t)
 {
     const Level *lv[2] = {&t->world, NULL};
-    size_t bytes = sizeof *t + sizeof *t->poly_normal * t->scene->prim_count;
+    size_t bytes = sizeof *t + (t->poly_normal ? sizeof *t->poly_normal * t->scene->prim_count : 0);
     for (size_t o = 0; o <= t->scene->object_count; o++) {
         const Level *l = o == 0 ? lv[0] : &t->objects[o - 1];
-        bytes += rf_bvh_bytes(&l->bvh) + sizeof *l + (size_t)l->item_count * (sizeof *l->items + 2 * sizeof(int));
+        bytes += rf_bvh_bytes(&l->bvh) + sizeof *l + sizeof *l->unbounded * (size_t)l->unbounded_count;
+        if (l->items) /* brute force keeps them */
+            bytes += (size_t)l->item_count * (sizeof *l->items + sizeof *l->bvh_items);
     }
     return bytes;
 }
@@ -502,7 +514,7 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
     uint64_t bk = *key_lim;
     int found = 0;
     for (int u = 0; u < lv->unbounded_count; u++) {
-        uint64_t key = item_key(lv->items[lv->unbounded[u]]);
+        uint64_t key = lv->unbounded[u];
         double t;
         if (hit_key(q, key, ray, NULL, t_min, bt, bk, &t)) {
             if (q->shadow)
