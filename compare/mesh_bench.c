@@ -104,6 +104,23 @@ typedef struct {
     const RaySet *set;
 } EmbreeJob;
 
+static struct RTCRay embree_ray(const RfRay *r, float tfar)
+{
+    struct RTCRay ray;
+    ray.org_x = (float)r->origin.x;
+    ray.org_y = (float)r->origin.y;
+    ray.org_z = (float)r->origin.z;
+    ray.dir_x = (float)r->dir.x;
+    ray.dir_y = (float)r->dir.y;
+    ray.dir_z = (float)r->dir.z;
+    ray.tnear = 0.0f;
+    ray.tfar = tfar;
+    ray.mask = ~0u;
+    ray.flags = 0;
+    ray.time = 0.0f;
+    return ray;
+}
+
 static int embree_primary(void *ctx, int chunk, int thread)
 {
     EmbreeJob *j = ctx;
@@ -112,19 +129,8 @@ static int embree_primary(void *ctx, int chunk, int thread)
     rtcInitIntersectContext(&ic);
     (void)thread;
     for (int i = lo; i < hi; i++) {
-        const RfRay *r = &j->set->rays[i];
         struct RTCRayHit rh;
-        rh.ray.org_x = (float)r->origin.x;
-        rh.ray.org_y = (float)r->origin.y;
-        rh.ray.org_z = (float)r->origin.z;
-        rh.ray.dir_x = (float)r->dir.x;
-        rh.ray.dir_y = (float)r->dir.y;
-        rh.ray.dir_z = (float)r->dir.z;
-        rh.ray.tnear = 0.0f;
-        rh.ray.tfar = INFINITY;
-        rh.ray.mask = ~0u;
-        rh.ray.flags = 0;
-        rh.ray.time = 0.0f;
+        rh.ray = embree_ray(&j->set->rays[i], INFINITY);
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(j->scene, &ic, &rh);
         j->set->answer[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1 : (int)rh.hit.primID;
@@ -140,19 +146,7 @@ static int embree_shadow(void *ctx, int chunk, int thread)
     rtcInitIntersectContext(&ic);
     (void)thread;
     for (int i = lo; i < hi; i++) {
-        const RfRay *r = &j->set->rays[i];
-        struct RTCRay ray;
-        ray.org_x = (float)r->origin.x;
-        ray.org_y = (float)r->origin.y;
-        ray.org_z = (float)r->origin.z;
-        ray.dir_x = (float)r->dir.x;
-        ray.dir_y = (float)r->dir.y;
-        ray.dir_z = (float)r->dir.z;
-        ray.tnear = 0.0f;
-        ray.tfar = (float)j->set->t_max[i];
-        ray.mask = ~0u;
-        ray.flags = 0;
-        ray.time = 0.0f;
+        struct RTCRay ray = embree_ray(&j->set->rays[i], (float)j->set->t_max[i]);
         rtcOccluded1(j->scene, &ic, &ray);
         j->set->answer[i] = ray.tfar < 0.0f;
     }

@@ -2,6 +2,7 @@
  * the top levels binned on every thread and the subtrees built on every thread, the binary
  * tree collapsed to 8-wide nodes, triangle blocks filled on every thread. */
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -182,17 +183,25 @@ typedef struct {
     int task_size; /* ranges up to this long become tasks in the top phase */
 } TaskList;
 
+/* Room for one more element in a growing array (the capacity doubles); 0: out of memory. */
+static int room_for_one(void **arr, int *cap, int count, size_t elem)
+{
+    if (count < *cap)
+        return 1;
+    if (*cap > INT_MAX / 2)
+        return 0;
+    int c = *cap ? 2 * *cap : 64;
+    void *p = realloc(*arr, elem * (size_t)c);
+    if (!p)
+        return 0;
+    *arr = p;
+    *cap = c;
+    return 1;
+}
+
 static int nb_new(NodeBuf *nb)
 {
-    if (nb->count == nb->cap) {
-        int cap = nb->cap ? 2 * nb->cap : 256;
-        BNode *n = realloc(nb->nodes, sizeof *n * (size_t)cap);
-        if (!n)
-            return -1;
-        nb->nodes = n;
-        nb->cap = cap;
-    }
-    return nb->count++;
+    return room_for_one((void **)&nb->nodes, &nb->cap, nb->count, sizeof *nb->nodes) ? nb->count++ : -1;
 }
 
 typedef struct {
@@ -376,14 +385,8 @@ static int build_node(Builder *b, NodeBuf *nb, TaskList *tasks, int first, int c
     int child[2];
     for (int s = 0; s < 2; s++) {
         if (tasks && ranges[s][1] <= tasks->task_size) {
-            if (tasks->count == tasks->cap) {
-                int cap = tasks->cap ? 2 * tasks->cap : 64;
-                Task *t = realloc(tasks->tasks, sizeof *t * (size_t)cap);
-                if (!t)
-                    return -1;
-                tasks->tasks = t;
-                tasks->cap = cap;
-            }
+            if (!room_for_one((void **)&tasks->tasks, &tasks->cap, tasks->count, sizeof *tasks->tasks))
+                return -1;
             Task *t = &tasks->tasks[tasks->count];
             memset(t, 0, sizeof *t);
             t->first = ranges[s][0];
@@ -431,14 +434,8 @@ typedef struct {
 
 static int wide_new(Collapse *c)
 {
-    if (c->count == c->cap) {
-        int cap = c->cap ? 2 * c->cap : 64;
-        RfBvhNode *n = realloc(c->nodes, sizeof *n * (size_t)cap);
-        if (!n)
-            return -1;
-        c->nodes = n;
-        c->cap = cap;
-    }
+    if (!room_for_one((void **)&c->nodes, &c->cap, c->count, sizeof *c->nodes))
+        return -1;
     RfBvhNode *n = &c->nodes[c->count];
     for (int k = 0; k < WIDTH; k++) {
         for (int a = 0; a < 3; a++) {
