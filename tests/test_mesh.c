@@ -550,7 +550,7 @@ static void test_mesh_scenes(void)
  * digits; most take the reader's fast decimal path, the rest strtod. */
 static void random_number(RfTestRng *r, char *buf, size_t n)
 {
-    char mant[64];
+    char mant[32];
     int k = 0, digits = 1 + (int)rf_test_uniform(r, 0, 20), point = (int)rf_test_uniform(r, -1, digits + 1);
     int sign = (int)rf_test_uniform(r, 0, 3), form = (int)rf_test_uniform(r, 0, 6);
     if (sign == 1)

@@ -590,9 +590,11 @@ static int fill_blocks(void *ctx, int chunk, int thread)
         const RfBvhNode *n = &j->bvh->nodes[j->leaf_node[l]];
         uint32_t ref = n->ref[j->leaf_slot[l]];
         int first = j->leaf_start[l], count = (int)n->pad[j->leaf_slot[l]];
-        if (l + 4 < hi) /* the records of a leaf a little ahead */
-            for (int i = 0; i < 8; i++)
-                __builtin_prefetch(&j->payload[j->ids[j->leaf_start[l + 4] + (i < count ? i : 0)]]);
+        if (l + 4 < hi) { /* the records of a leaf a little ahead */
+            int ahead = (int)j->bvh->nodes[j->leaf_node[l + 4]].pad[j->leaf_slot[l + 4]];
+            for (int i = 0; i < ahead; i++)
+                __builtin_prefetch(&j->payload[j->ids[j->leaf_start[l + 4] + i]]);
+        }
         RfBvhTriBlock *blk = &j->bvh->blocks[REF_FIRST(ref)];
         for (int i = 0; i < REF_COUNT(ref) * LANES; i++) {
             RfBvhTriBlock *b = &blk[i / LANES];
