@@ -43,17 +43,18 @@ struct RfBvhTriBlock {
 };
 
 /* A float at least (at most) x, without branches: x rounded to nearest and moved by
- * |f| 2^-23 + 2^-149, more than that rounding can have moved it (for |x| up to FLT_MAX;
+ * |f| 2^-23 + 2^-126 (FLT_MIN, not a subnormal: those cost microcode assists on some CPUs),
+ * more than that rounding can have moved it (for |x| up to FLT_MAX;
  * beyond, +-inf): the outward rounding of boxes and of the ray's slab constants. */
 static inline float rf__widen_up(double x)
 {
     float f = (float)x;
-    return f + (fabsf(f) * 0x1p-23f + 0x1p-149f);
+    return f + (fabsf(f) * 0x1p-23f + 0x1p-126f);
 }
 static inline float rf__widen_down(double x)
 {
     float f = (float)x;
-    return f - (fabsf(f) * 0x1p-23f + 0x1p-149f);
+    return f - (fabsf(f) * 0x1p-23f + 0x1p-126f);
 }
 
 #endif
