@@ -46,6 +46,12 @@ RfSphereQuadratic rf_sphere_quadratic(RfRay ray, RfSphere s, RfSphereMethod meth
  * t is large and e + t d - center would cancel. */
 int rf_intersect_sphere(RfRay ray, RfSphere s, RfSphereMethod method, double t_min, double t_max,
                         RfHit *hit);
+/* The stable method's two roots t[0] <= t[1] (1), or none (0), with what a root's normal needs:
+ * rf_intersect_sphere is these two routines, and the tracer's own loops use them directly. */
+typedef struct { double t[2]; RfVec3 v; double off; } RfSphereRoots;
+int rf_sphere_roots(RfRay ray, RfSphere s, RfSphereRoots *out);
+/* The outward unit normal at root t[far]. */
+RfVec3 rf_sphere_root_normal(const RfSphereRoots *r, RfRay ray, RfSphere s, int far);
 
 /* ---- §3.5.2 plane in Hesse form <x, normal> = offset (normal need not be unit) ---- */
 

@@ -74,6 +74,17 @@ static SphereParts sphere_parts(RfRay ray, RfSphere s)
     return p;
 }
 
+/* The stable method's roots t[0] <= t[1] from its parts (computed here into *p). The
+ * compensated c is computed only when there are real roots: most sphere tests are misses. */
+static inline int sphere_stable(RfRay ray, RfSphere s, SphereParts *p, double *c, double t[2])
+{
+    *p = sphere_parts(ray, s);
+    if (!(p->dq >= 0.0))
+        return 0;
+    *c = dot_minus_square(p->f, s.radius);
+    return solve_quadratic(p->a, p->bh, *c, p->dq, t);
+}
+
 /* §3.5.1 */
 RfSphereQuadratic rf_sphere_quadratic(RfRay ray, RfSphere s, RfSphereMethod method)
 {
@@ -99,10 +110,12 @@ RfSphereQuadratic rf_sphere_quadratic(RfRay ray, RfSphere s, RfSphereMethod meth
         }
         return q;
     }
-    SphereParts p = sphere_parts(ray, s);
-    q.c = dot_minus_square(f, s.radius);
+    SphereParts p;
+    int real = sphere_stable(ray, s, &p, &q.c, t);
+    if (!(p.dq >= 0.0))
+        q.c = dot_minus_square(f, s.radius);
     q.disc = 4.0 * p.dq;
-    if (solve_quadratic(q.a, p.bh, q.c, p.dq, t)) {
+    if (real) {
         q.t1 = t[0];
         q.t2 = t[1];
         q.roots = p.dq == 0.0 ? 1 : 2;
@@ -110,31 +123,53 @@ RfSphereQuadratic rf_sphere_quadratic(RfRay ray, RfSphere s, RfSphereMethod meth
     return q;
 }
 
+int rf_sphere_roots(RfRay ray, RfSphere s, RfSphereRoots *out)
+{
+    SphereParts p;
+    double c;
+    if (!sphere_stable(ray, s, &p, &c, out->t))
+        return 0;
+    out->v = p.v;
+    out->off = sqrt(p.dq > 0.0 ? p.dq : 0.0) / p.a;
+    return 1;
+}
+
+/* p - center = f + t d = v -+ (sqrt(D/4)/a) d: no cancellation between a large t and the centre,
+ * so the normal of a far sphere keeps its digits (|v + x d| = r exactly) */
+RfVec3 rf_sphere_root_normal(const RfSphereRoots *r, RfRay ray, RfSphere s, int far)
+{
+    return rf_vec3_scale(rf_vec3_add(r->v, rf_vec3_scale(ray.dir, far ? r->off : -r->off)), 1.0 / s.radius);
+}
+
+/* The smallest root in [t_min, t_max) of t[0] <= t[1]: 0 (none), 1 (near) or 2 (far). */
+static inline int pick_root(const double t[2], double t_min, double t_max)
+{
+    return in_range(t[0], t_min, t_max) ? 1 : in_range(t[1], t_min, t_max) ? 2 : 0;
+}
+
 int rf_intersect_sphere(RfRay ray, RfSphere s, RfSphereMethod method, double t_min, double t_max,
                         RfHit *hit)
 {
-    RfSphereQuadratic q = rf_sphere_quadratic(ray, s, method);
-    double t;
-    int far;
-    if (q.roots == 0)
-        return 0;
-    if (in_range(q.t1, t_min, t_max))
-        t = q.t1, far = 0;  /* the near side (origin outside) */
-    else if (in_range(q.t2, t_min, t_max))
-        t = q.t2, far = 1;  /* t1 behind or before t_min: origin inside, the far side */
-    else
-        return 0;
-    hit->t = t;
+    double t[2];
+    int root;
     hit->l[0] = hit->l[1] = hit->l[2] = 0.0;
     if (method == RF_SPHERE_SCRIPT) {
-        hit->normal = rf_vec3_scale(rf_vec3_sub(rf_ray_at(ray, t), s.center), 1.0 / s.radius);
-    } else {
-        /* p - center = f + t d = v -+ (sqrt(D/4)/a) d: no cancellation between a large t and
-         * the centre, so the normal of a far sphere keeps its digits (|v + x d| = r exactly) */
-        SphereParts p = sphere_parts(ray, s);
-        double off = sqrt(fmax(p.dq, 0.0)) / p.a;
-        hit->normal = rf_vec3_scale(rf_vec3_add(p.v, rf_vec3_scale(ray.dir, far ? off : -off)), 1.0 / s.radius);
+        RfSphereQuadratic q = rf_sphere_quadratic(ray, s, method);
+        t[0] = q.t1;
+        t[1] = q.t2;
+        if (q.roots == 0 || !(root = pick_root(t, t_min, t_max)))
+            return 0;
+        hit->t = t[root - 1];
+        hit->normal = rf_vec3_scale(rf_vec3_sub(rf_ray_at(ray, hit->t), s.center), 1.0 / s.radius);
+        return 1;
     }
+    /* t1 is the near side (origin outside); t2 when t1 is behind or before t_min (origin
+     * inside: the far side) */
+    RfSphereRoots r;
+    if (!rf_sphere_roots(ray, s, &r) || !(root = pick_root(r.t, t_min, t_max)))
+        return 0;
+    hit->t = r.t[root - 1];
+    hit->normal = rf_sphere_root_normal(&r, ray, s, root == 2);
     return 1;
 }
 
