@@ -61,15 +61,26 @@ static inline RfVec3 rf_aabb_center(RfAabb a) { return rf_vec3_scale(rf_vec3_add
  * the counter-clockwise side (p2 - p1) x (p3 - p1) is the front. */
 enum { RF_BVH_SEE_BOTH = 0, RF_BVH_SEE_FRONT = 1, RF_BVH_SEE_BACK = 2 };
 
+/* What the BVH is told of an item. Triangles and spheres it intersects itself (watertight,
+ * §3.5.3; the stable quadratic, §3.5.1), with the sides they show to nearest-hit queries; any
+ * other item is given by its box and tested by the caller's RfBvhItemFn. */
+enum { RF_BVH_OTHER = 0, RF_BVH_TRIANGLE = 1, RF_BVH_SPHERE = 2 };
+
+typedef struct {
+    int kind;        /* RF_BVH_* */
+    uint64_t key;    /* >= 1, distinct: of two hits at the same t the lower key wins */
+    int sides;       /* triangles, spheres: RF_BVH_SEE_* (a sphere's front is its outside) */
+    uint32_t user;   /* triangles, spheres: 30 bits the caller gets back with a hit */
+    RfTriangle tri;  /* RF_BVH_TRIANGLE */
+    RfSphere sphere; /* RF_BVH_SPHERE */
+    RfAabb box;      /* RF_BVH_OTHER */
+} RfBvhItem;
+
 typedef struct {
     int count; /* items 0 .. count-1 */
-    /* Item i: its key (>= 1, distinct: of two hits at the same t the lower key wins), and either
-     * 1 with *tri, *sides and *user (30 bits the caller gets back with a hit) for a triangle
-     * (tested by the BVH), or 0 with *box for any other item (tested by the caller's
-     * RfBvhItemFn). Boxes and vertices must be finite. Called once or twice per item, from
-     * several threads at once. */
-    int (*describe)(void *ctx, int item, uint64_t *key, RfTriangle *tri, int *sides, uint32_t *user,
-                    RfAabb *box);
+    /* Fills *out for item i. Boxes, vertices, centres and radii must be finite. Called once or
+     * twice per item, from several threads at once. */
+    void (*describe)(void *ctx, int item, RfBvhItem *out);
     void *ctx;
     int threads; /* build threads, 0: every core */
     int scalar;  /* 1: traverse with the scalar code (the vector code is the default where the
@@ -78,13 +89,14 @@ typedef struct {
 
 typedef struct RfBvhNode RfBvhNode;         /* 8 children: float boxes, child references */
 typedef struct RfBvhTriBlock RfBvhTriBlock; /* 4 triangles: float and double vertices, keys */
+typedef struct RfBvhOther RfBvhOther;       /* a sphere or a caller's item */
 
 typedef struct {
     RfBvhNode *nodes;
     int node_count;
     RfBvhTriBlock *blocks;
     int block_count;
-    uint64_t *others;  /* keys of the items tested by the caller, in leaf order */
+    RfBvhOther *others; /* spheres and the caller's items, in leaf order */
     int other_count;
     int item_count, tri_count;
     int depth;         /* levels of 8-wide nodes, root = 1 */
@@ -124,13 +136,15 @@ typedef int (*RfBvhItemFn)(void *ctx, uint64_t key, const RfBvhRay *ray, double 
                            int inclusive, double *t);
 
 /* The nearest hit so far: t and key. Start with key 0 for "none" (t is then an exclusive limit)
- * or with a hit's key (a later hit at the same t must have a lower key). tri and user: the
- * vertices and the describe()'s user bits when a triangle of the BVH is the nearest (tri NULL
- * for the caller's items). */
+ * or with a hit's key (a later hit at the same t must have a lower key). When a triangle or a
+ * sphere of the BVH is the nearest: tri or sphere (the other NULL), far (a sphere's far root,
+ * for rf_sphere_root_normal) and its user bits; both NULL for the caller's items. */
 typedef struct {
     double t;
     uint64_t key;
     const RfTriangle *tri;
+    const RfSphere *sphere;
+    int far;
     uint32_t user;
 } RfBvhHit;
 

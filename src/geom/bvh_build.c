@@ -515,10 +515,13 @@ static int collapse(Collapse *c, const int32_t *ids, int bi, int w, int depth)
  * that filling the blocks in leaf order reads one small record per item instead of calling
  * describe() on the caller's scene in random order. */
 typedef struct {
-    RfTriangle tri;
+    union {
+        RfTriangle tri;
+        RfSphere sphere;
+    } u;
     uint64_t key;
     uint32_t user; /* sides << 30 | the caller's bits */
-    uint32_t pad;
+    int kind;      /* RF_BVH_* */
 } Payload;
 
 enum { CHUNKS = 64 };
@@ -541,13 +544,16 @@ static int make_refs(void *ctx, int chunk, int thread)
     (void)thread;
     for (int i = lo; i < hi; i++) {
         Payload *pl = &j->payload[i];
-        RfAabb box;
-        uint32_t user = 0;
-        int sides = 0;
-        int is_tri = j->desc->describe(j->desc->ctx, i, &pl->key, &pl->tri, &sides, &user, &box);
-        pl->user = ((uint32_t)sides << 30) | (user & USER_BITS);
-        if (is_tri) {
-            const RfVec3 *p[3] = {&pl->tri.p1, &pl->tri.p2, &pl->tri.p3};
+        RfBvhItem it;
+        memset(&it, 0, sizeof it);
+        j->desc->describe(j->desc->ctx, i, &it);
+        RfAabb box = it.box;
+        pl->key = it.key;
+        pl->kind = it.kind;
+        pl->user = ((uint32_t)it.sides << 30) | (it.user & USER_BITS);
+        if (it.kind == RF_BVH_TRIANGLE) {
+            pl->u.tri = it.tri;
+            const RfVec3 *p[3] = {&it.tri.p1, &it.tri.p2, &it.tri.p3};
             box = rf_aabb_add_point(rf_aabb_add_point(rf_aabb_add_point(rf_aabb_empty(), *p[0]), *p[1]), *p[2]);
             for (int v = 0; v < 3; v++) {
                 double m = fmax(fabs(p[v]->x), fmax(fabs(p[v]->y), fabs(p[v]->z)));
@@ -555,6 +561,14 @@ static int make_refs(void *ctx, int chunk, int thread)
             }
             j->ids[i] = i;
         } else {
+            if (it.kind == RF_BVH_SPHERE) {
+                pl->u.sphere = it.sphere;
+                RfVec3 r = rf_vec3(it.sphere.radius, it.sphere.radius, it.sphere.radius);
+                box.lo = rf_vec3_sub(it.sphere.center, r);
+                box.hi = rf_vec3_add(it.sphere.center, r);
+                if (!isfinite(it.sphere.radius) || !(it.sphere.radius > 0.0))
+                    return j->bad = 1;
+            }
             j->ids[i] = -1 - i;
         }
         const double lo3[3] = {box.lo.x, box.lo.y, box.lo.z}, hi3[3] = {box.hi.x, box.hi.y, box.hi.z};
@@ -609,7 +623,7 @@ static int fill_blocks(void *ctx, int chunk, int thread)
                 continue;
             }
             const Payload *pl = &j->payload[j->ids[first + i]];
-            const RfVec3 *p[3] = {&pl->tri.p1, &pl->tri.p2, &pl->tri.p3};
+            const RfVec3 *p[3] = {&pl->u.tri.p1, &pl->u.tri.p2, &pl->u.tri.p3};
             for (int v = 0; v < 3; v++) {
                 b->v[v][0][lane] = (float)p[v]->x;
                 b->v[v][1][lane] = (float)p[v]->y;
@@ -617,7 +631,7 @@ static int fill_blocks(void *ctx, int chunk, int thread)
             }
             b->key[lane] = pl->key;
             b->user[lane] = pl->user;
-            b->tri[lane] = pl->tri;
+            b->tri[lane] = pl->u.tri;
         }
     }
     return 0;
@@ -781,8 +795,16 @@ RfStatus rf_bvh_build(RfBvh *bvh, const RfBvhDesc *desc)
                 nd->pad[k] = (uint32_t)count;
                 blk += nb;
             } else if (REF_KIND(r) == KIND_OTHERS) {
-                for (int q = 0; q < count; q++)
-                    bvh->others[oth + q] = payload[-1 - b.ids[start + q]].key;
+                for (int q = 0; q < count; q++) {
+                    const Payload *pl = &payload[-1 - b.ids[start + q]];
+                    RfBvhOther *o = &bvh->others[oth + q];
+                    memset(o, 0, sizeof *o);
+                    o->key = pl->key;
+                    o->user = pl->user;
+                    o->kind = pl->kind;
+                    if (pl->kind == RF_BVH_SPHERE)
+                        o->sphere = pl->u.sphere;
+                }
                 nd->ref[k] = REF_LEAF(KIND_OTHERS, oth, count);
                 oth += count;
             }

@@ -42,6 +42,14 @@ struct RfBvhTriBlock {
     uint32_t pad2[8];
 };
 
+/* An item of an "others" leaf: a sphere (tested inline) or an item of the caller (its callback). */
+struct RfBvhOther {
+    uint64_t key;
+    uint32_t user; /* RF_BVH_SEE_* in the top 2 bits, the caller's 30 below */
+    int kind;      /* RF_BVH_SPHERE or RF_BVH_OTHER */
+    RfSphere sphere;
+};
+
 /* A float at least (at most) x, without branches: x rounded to nearest and moved by
  * |f| 2^-23 + 2^-126 (FLT_MIN, not a subnormal: those cost microcode assists on some CPUs),
  * more than that rounding can have moved it (for |x| up to FLT_MAX;

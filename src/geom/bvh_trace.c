@@ -257,6 +257,7 @@ static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double 
             best->t = t;
             best->key = key;
             best->tri = &blk->tri[k];
+            best->sphere = NULL;
             best->user = blk->user[k] & USER_BITS;
             improved = 1;
         }
@@ -264,20 +265,65 @@ static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double 
     return improved;
 }
 
+/* A sphere of an "others" leaf, by the rules the tracer applies to every item: the first root at
+ * t >= t_min within the limit (t < lim, or t <= lim for a key below lim_key) whose side the
+ * sphere shows (a hidden side passes the ray on to the far root; any = 1: either side). Returns
+ * the root + 1 (1 near, 2 far) or 0, and its t. */
+static inline int sphere_hit(const RfBvhOther *o, const RfRay *ray, double t_min, double lim, uint64_t lim_key,
+                             int any, double *t)
+{
+    RfSphereRoots r;
+    if (!rf_sphere_roots(*ray, o->sphere, &r))
+        return 0;
+    unsigned sides = o->user >> 30;
+    double lo = t_min;
+    for (int c = 0; c < 2; c++) {
+        double tc = r.t[c];
+        if (!(tc >= lo && (tc < lim || (tc == lim && o->key < lim_key))))
+            continue;
+        if (!any && sides != RF_BVH_SEE_BOTH) {
+            int front = rf_vec3_dot(ray->dir, rf_sphere_root_normal(&r, *ray, o->sphere, c)) < 0.0;
+            if (front == (sides == RF_BVH_SEE_BACK)) { /* the hidden side: look beyond it */
+                lo = nextafter(tc, HUGE_VAL);
+                continue;
+            }
+        }
+        *t = tc;
+        return c + 1;
+    }
+    return 0;
+}
+
 static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r, double t_min,
                               RfBvhHit *best, RfBvhItemFn fn, void *ctx, int any)
 {
     int improved = 0;
-    const uint64_t *key = &bvh->others[REF_FIRST(ref)], *end = key + REF_COUNT(ref);
-    for (; key < end; key++) {
+    const RfBvhOther *o = &bvh->others[REF_FIRST(ref)], *end = o + REF_COUNT(ref);
+    for (; o < end; o++) {
         double t;
-        if (!fn(ctx, *key, r, t_min, best->t, !any && *key < best->key, &t))
+        if (o->kind == RF_BVH_SPHERE) {
+            int root = sphere_hit(o, &r->ray, t_min, best->t, any ? 0 : best->key, any, &t);
+            if (!root)
+                continue;
+            if (any)
+                return 1;
+            best->t = t;
+            best->key = o->key;
+            best->tri = NULL;
+            best->sphere = &o->sphere;
+            best->far = root == 2;
+            best->user = o->user & USER_BITS;
+            improved = 1;
+            continue;
+        }
+        if (!fn(ctx, o->key, r, t_min, best->t, !any && o->key < best->key, &t))
             continue;
         if (any)
             return 1;
         best->t = t;
-        best->key = *key;
+        best->key = o->key;
         best->tri = NULL;
+        best->sphere = NULL;
         improved = 1;
     }
     return improved;
@@ -363,6 +409,6 @@ int rf_bvh_nearest(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best
 int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,
                     RfBvhItemFn fn, void *ctx)
 {
-    RfBvhHit lim = {t_max, 0, NULL, 0};
+    RfBvhHit lim = {t_max, 0, NULL, NULL, 0, 0};
     return traverse(bvh, ray, t_min, &lim, fn, ctx, 1);
 }

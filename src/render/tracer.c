@@ -185,26 +185,37 @@ static int prim_smooth(const RfScene *s, const RfPrimitive *p)
     return (p->flags & RF_PRIM_VERTEX_NORMALS) && (s->materials[p->material].flags & RF_MAT_SMOOTH);
 }
 
-static int describe_item(void *ctx, int j, uint64_t *key, RfTriangle *tri, int *sides, uint32_t *user, RfAabb *box)
+static int prim_sides(const RfPrimitive *p)
+{
+    return (p->flags & RF_PRIM_TWO_SIDED) ? RF_BVH_SEE_BOTH
+           : (p->flags & RF_PRIM_INSIDE)  ? RF_BVH_SEE_BACK
+                                          : RF_BVH_SEE_FRONT;
+}
+
+/* What the BVH takes itself (triangles, spheres) and what it asks the tracer about (boxes). */
+static void describe_item(void *ctx, int j, RfBvhItem *out)
 {
     const Describe *d = ctx;
     const RfScene *s = d->tracer->scene;
     Item it = d->level->items[d->level->bvh_items[j]];
     const RfPrimitive *p = &s->prims[it.prim];
-    *key = item_key(it);
+    out->key = item_key(it);
+    out->sides = prim_sides(p);
+    out->user = (uint32_t)p->material;
     if (item_is_triangle(s, it)) {
-        *tri = item_triangle(s, it);
-        *sides = (p->flags & RF_PRIM_TWO_SIDED) ? RF_BVH_SEE_BOTH
-                 : (p->flags & RF_PRIM_INSIDE)  ? RF_BVH_SEE_BACK
-                                                : RF_BVH_SEE_FRONT;
-        *user = (uint32_t)p->material | (prim_smooth(s, p) ? USER_SMOOTH : 0u);
-        return 1;
+        out->kind = RF_BVH_TRIANGLE;
+        out->tri = item_triangle(s, it);
+        out->user |= prim_smooth(s, p) ? USER_SMOOTH : 0u;
+    } else if (p->type == RF_PRIM_SPHERE) {
+        out->kind = RF_BVH_SPHERE;
+        out->sphere = p->u.sphere;
+    } else {
+        out->kind = RF_BVH_OTHER;
+        if (p->type == RF_PRIM_INSTANCE)
+            instance_box(d->tracer, p, &out->box);
+        else
+            out->box = item_box(s, it);
     }
-    if (p->type == RF_PRIM_INSTANCE)
-        instance_box(d->tracer, p, box);
-    else
-        *box = item_box(s, it);
-    return 0;
 }
 
 /* Items and BVH of prims[first, end): the world (objects' parts skipped) or one object. The
@@ -522,8 +533,7 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
             bt = t, bk = key, found = 1;
         }
     }
-    const RfTriangle *tri_won = NULL;
-    RfBvhHit best = {bt, bk, NULL, 0};
+    RfBvhHit best = {bt, bk, NULL, NULL, 0, 0};
     RfBvhRay br;
     if (q->tracer->opt.brute_force) {
         /* every item, in key order, with the double kernels alone: the reference for the BVH */
@@ -547,13 +557,20 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
             bt = best.t;
             bk = best.key;
             found = 1;
-            tri_won = best.tri;
         }
     }
     if (!found)
         return 0;
-    if (tri_won) { /* the winner's barycentrics and normal: the same bits as the BVH's t */
-        rf_intersect_triangle_watertight(&br.wr, *tri_won, t_min, HUGE_VAL, &q->hit);
+    if (best.tri || best.sphere) { /* the winner's details: the same bits as the BVH's t */
+        if (best.tri) {
+            rf_intersect_triangle_watertight(&br.wr, *best.tri, t_min, HUGE_VAL, &q->hit);
+        } else {
+            RfSphereRoots r;
+            rf_sphere_roots(ray, *best.sphere, &r);
+            q->hit.t = bt;
+            q->hit.l[0] = q->hit.l[1] = q->hit.l[2] = 0.0;
+            q->hit.normal = rf_sphere_root_normal(&r, ray, *best.sphere, best.far);
+        }
         q->item = key_item(bk);
         q->material = (int)(best.user & USER_MATERIAL);
         q->smooth = (best.user & USER_SMOOTH) != 0;
