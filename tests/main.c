@@ -15,6 +15,7 @@ extern const RfTest rf_tests_raytrace[];
 extern const RfTest rf_tests_io[];
 extern const RfTest rf_tests_bvh[];
 extern const RfTest rf_tests_accel[];
+extern const RfTest rf_tests_kernels[];
 extern const RfTest rf_tests_parallel[];
 extern const RfTest rf_tests_scene[];
 extern const RfTest rf_tests_render[];
@@ -24,7 +25,7 @@ extern const RfTest rf_tests_mesh[];
 
 static const RfTest *const suites[] = {
     rf_tests_vecmat, rf_tests_geometry, rf_tests_transform, rf_tests_formula, rf_tests_cli,
-    rf_tests_color, rf_tests_raytrace, rf_tests_io, rf_tests_bvh, rf_tests_accel, rf_tests_parallel,
+    rf_tests_color, rf_tests_raytrace, rf_tests_io, rf_tests_bvh, rf_tests_accel, rf_tests_kernels, rf_tests_parallel,
     rf_tests_scene, rf_tests_render,
     rf_tests_stress,
     rf_tests_compare,

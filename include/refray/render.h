@@ -38,6 +38,9 @@ typedef struct {
     double fixed_offset; /* 0: the self-intersection policy (rf_ray_offset_origin); > 0 replaces it
                             by this absolute offset: a planted bug for the verifier only */
     RfTracerOptions accel; /* threads 0 there: the render's thread count */
+    unsigned kernel;     /* 0: the kernel the scene needs; else the parts of a compiled kernel
+                            (rf_kernel_parse: "general" has them all), which must include the
+                            needed ones (RF_ERR_DOMAIN otherwise): the same image either way */
     RfProgressFn progress; /* called after each tile (may be NULL) */
     void *progress_ctx;
 } RfRenderOptions;
@@ -52,7 +55,24 @@ typedef struct {
     double build_seconds; /* preparing the tracer: items, BVH */
     double trace_seconds; /* the rays */
     size_t accel_bytes;  /* held by the tracer (rf_tracer_bytes) */
+    unsigned kernel;     /* the parts of the kernel that ran (rf_kernel_name) */
 } RfRenderStats;
+
+/* The kernel a render of this scene with these options would run: the compiled one with the
+ * fewest parts (shadow rays, secondary rays, Fresnel, highlights, ambient, emission, spot,
+ * directional and falling-off lights, jittered samples) that has every part the scene needs. */
+unsigned rf_render_kernel(const RfScene *scene, const RfRenderOptions *opt);
+/* "general" followed by the parts left out, each after a '-' ("general-secondary-fresnel");
+ * buf returned. Parts: shadow, secondary, fresnel, specular, ambient, emission, spot,
+ * directional, falloff, jitter. */
+const char *rf_kernel_name(unsigned parts, char *buf, size_t size);
+/* The parts of a kernel name (rf_kernel_name's form); 0 for an unknown name or a set that no
+ * compiled kernel has. */
+unsigned rf_kernel_parse(const char *name);
+/* Every part a kernel can have; the number of compiled kernels and the parts of kernel i. */
+unsigned rf_kernel_all_parts(void);
+int rf_kernel_count_compiled(void);
+unsigned rf_kernel_compiled(int i);
 
 /* The prepared scene: acceleration structure and per-primitive data. Immutable once built, so
  * any number of threads trace through it at once. */

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "refray/render.h"
 #include "refray/scene.h"
 #include "refray/scene_io.h"
 
@@ -231,6 +232,10 @@ int rf_cmd_info(int argc, char **argv)
         if (f & (1u << b))
             printf(" %s", rf_feature_name(1u << b));
     printf("\n");
+    /* the render kernel `refray render` would run with its defaults (--kernel general: all parts) */
+    RfRenderOptions ro = rf_render_options_default();
+    char kname[256];
+    printf("kernel    %s\n", rf_kernel_name(rf_render_kernel(&s, &ro), kname, sizeof kname));
     rf_scene_free(&s);
     return 0;
 }

@@ -46,13 +46,16 @@ static void usage(FILE *out)
             "usage: refray render SCENE -o OUT.exr [--png OUT.png] [--width W] [--height H]\n"
             "                     [--samples N] [--depth D] [--threads N] [--local] [--seed S]\n"
             "                     [--gamma G | --srgb] [--nff-fov centres|edges] [--depth-out D.exr]\n"
-            "                     [--quiet]\n"
+            "                     [--kernel auto|general|PARTS] [--quiet]\n"
             "  SCENE      an .nff, .rf or .obj scene (docs/scene-format.md)\n"
             "  -o         linear OpenEXR output (float RGB, settings in the header)\n"
             "  --png      display PNG: gamma %.1f encoded (the script's §1.1.2), or --srgb\n"
             "  --local    primary rays and local Phong only (no shadows, reflection, refraction)\n"
             "  --depth-out DEPTH.exr  linear eye-space depth of the primary hit through each pixel\n"
-            "             centre (distance along the view axis), +inf where the ray hits nothing\n",
+            "             centre (distance along the view axis), +inf where the ray hits nothing\n"
+            "  --kernel   the render kernel: auto (the one compiled for what the scene needs),\n"
+            "             general (every part) or a compiled one named as refray info names\n"
+            "             it (general-secondary-fresnel: without those parts); the same image\n",
             2.2);
 }
 
@@ -145,6 +148,8 @@ int rf_cmd_render(int argc, char **argv)
             opt.seed = (uint64_t)s;
         } else if ((shared = rf_arg_shared(a, v, &lopt, &popt, &used)) != 0) {
             ok = shared > 0, i += used - 1;
+        } else if (strcmp(a, "--kernel") == 0 && v) {
+            ok = strcmp(v, "auto") == 0 || (opt.kernel = rf_kernel_parse(v)) != 0, i++;
         } else if (strcmp(a, "--local") == 0) {
             opt.local_only = 1;
         } else if (strcmp(a, "--quiet") == 0) {
@@ -204,12 +209,16 @@ int rf_cmd_render(int argc, char **argv)
         return 1;
     }
     if (rs != RF_OK) {
-        fprintf(stderr, "refray render: %s: %s\n", scene_path, rf_status_str(rs));
+        if (rs == RF_ERR_DOMAIN && opt.kernel)
+            fprintf(stderr, "refray render: %s: kernel '%s' lacks a part the scene needs (refray info names it)\n",
+                    scene_path, rf_kernel_name(opt.kernel, (char[256]){0}, 256));
+        else
+            fprintf(stderr, "refray render: %s: %s\n", scene_path, rf_status_str(rs));
         return 1;
     }
     int rc = 0;
     if (exr) {
-        char settings[256], timing[64], threads[32], cpu[256], load_t[32], build_t[32], trace_t[32];
+        char settings[256], timing[64], threads[32], cpu[256], load_t[32], build_t[32], trace_t[32], kernel[256];
         cpu_model(cpu, sizeof cpu);
         snprintf(settings, sizeof settings, "%dx%d, %d spp, depth %d%s, seed %llu", st.width, st.height,
                  st.samples, st.max_depth, opt.local_only ? ", local only" : "", (unsigned long long)opt.seed);
@@ -221,7 +230,8 @@ int rf_cmd_render(int argc, char **argv)
         RfImageAttr attrs[] = {
             {"refray:version", RF_VERSION}, {"refray:scene", scene_path}, {"refray:settings", settings},
             {"refray:renderTime", timing}, {"refray:loadTime", load_t}, {"refray:buildTime", build_t},
-            {"refray:traceTime", trace_t}, {"refray:threads", threads}, {"refray:compiler", RF_COMPILER},
+            {"refray:traceTime", trace_t}, {"refray:kernel", rf_kernel_name(st.kernel, kernel, sizeof kernel)},
+            {"refray:threads", threads}, {"refray:compiler", RF_COMPILER},
             {"refray:flags", RF_BUILD_FLAGS}, {"refray:cpu", cpu},
         };
         if (rf_exr_write(exr, &img, attrs, (int)(sizeof attrs / sizeof attrs[0]), err, sizeof err) != RF_OK) {

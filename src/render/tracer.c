@@ -1,4 +1,5 @@
-/* The Whitted-style tracer (render.h): scene preparation, nearest-hit queries, shading. */
+/* The tracer (render.h): scene preparation, nearest-hit and occlusion queries, the
+ * self-intersection policy. The shading lives in the kernels (kernel_body.h). */
 #include "refray/render.h"
 
 #include <float.h>
@@ -50,16 +51,6 @@ struct RfTracer {
     Level *objects;    /* per RfScene.objects: one BVH each, shared by all its instances */
     RfVec3 *poly_normal; /* per primitive: unit normal of a non-convex polygon (Newell) */
 };
-
-static double rgb_max(RfRgb c) { return fmax(c.r, fmax(c.g, c.b)); }
-
-RfRenderOptions rf_render_options_default(void)
-{
-    RfRenderOptions o;
-    memset(&o, 0, sizeof o);
-    o.seed = 1;
-    return o;
-}
 
 /* ---- preparation ---- */
 
@@ -626,249 +617,16 @@ int rf_tracer_intersect(const RfTracer *t, RfRay ray, double t_min, double t_max
     return out->prim;
 }
 
-/* ---- shading ---- */
-
-typedef struct {
-    const RfTracer *tracer;
-    const RfRenderOptions *opt;
-    int max_depth;
-    double min_contribution;
-    RfRgb background, ambient;
-    RfCamera camera;
-    double hither; /* near plane distance along the view axis (NFF `hither`) */
-    int width, height, samples;
-    RfImage *img;
-    RfRenderStats *per_thread; /* one per thread: no sharing on the hot path */
-} Job;
+/* ---- the self-intersection policy ---- */
 
 /* A point moved off the surface to the side the new ray leaves by (DESIGN.md numeric policy:
- * RF_RAY_OFFSET_REL, numeric.h), so that the new ray does not hit its own surface again. */
+ * RF_RAY_OFFSET_REL, numeric.h), so that the new ray does not hit its own surface again. The
+ * scale is max(1, |p|inf), a NaN coordinate ignored (as fmax does, without its library call). */
 RfVec3 rf_ray_offset_origin(RfVec3 p, RfVec3 n, RfVec3 dir, double fixed_offset)
 {
-    double scale = fmax(1.0, fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))));
+    double scale = 1.0, c[3] = {fabs(p.x), fabs(p.y), fabs(p.z)};
+    for (int i = 0; i < 3; i++)
+        scale = c[i] > scale ? c[i] : scale;
     double eps = fixed_offset > 0.0 ? fixed_offset : RF_RAY_OFFSET_REL * scale;
     return rf_vec3_add(p, rf_vec3_scale(n, rf_vec3_dot(dir, n) >= 0.0 ? eps : -eps));
-}
-
-static RfVec3 offset_origin(const Job *job, RfVec3 p, RfVec3 n, RfVec3 dir)
-{
-    return rf_ray_offset_origin(p, n, dir, job->opt->fixed_offset);
-}
-
-static int light_sample(const RfLight *l, RfVec3 point, RfLightSample *out)
-{
-    RfRgb i = (l->intensity);
-    switch (l->kind) {
-    case RF_LIGHT_POINT:
-        return rf_light_point(i, l->position, l->falloff, point, out) == RF_OK;
-    case RF_LIGHT_DIRECTIONAL:
-        *out = rf_light_directional(i, l->direction);
-        return 1;
-    case RF_LIGHT_SPOT:
-        return rf_light_spot(i, l->position, l->direction, l->spot_exponent,
-                             l->spot_cutoff * (RF_PI / 180.0), l->falloff, point, out) == RF_OK;
-    default:
-        return 0;
-    }
-}
-
-/* The colour seen along ray (hits in [t_min, inf)); depth 1 is the primary ray, weight the
- * product of the reflection/transmission weights on the way here. */
-static RfRgb trace(const Job *job, RfRay ray, double t_min, int depth, double weight, RfRenderStats *st)
-{
-    const RfTracer *t = job->tracer;
-    const RfScene *s = t->scene;
-    RfSurfaceHit h;
-    if (rf_tracer_intersect(t, ray, t_min, HUGE_VAL, &h) < 0)
-        return job->background;
-    const RfMaterial *m = &s->materials[h.material];
-    RfVec3 v = rf_vec3_neg(rf_vec3_normalize(ray.dir));
-    RfVec3 n = h.shading_normal;
-    RfRgb kd = (m->kd), ks = (m->ks), zero = rf_rgb(0, 0, 0);
-    /* §3.6.2: emission + ka I_a + sum over lights of the diffuse and specular terms */
-    RfRgb color = rf_rgb_add((m->emission), rf_rgb_mul((m->ka), job->ambient));
-    for (size_t li = 0; li < s->light_count; li++) {
-        RfLightSample ls;
-        if (!light_sample(&s->lights[li], h.point, &ls) || rgb_max(ls.i) <= 0.0)
-            continue;
-        if (rf_vec3_dot(h.normal, ls.l) <= 0.0) /* the light is behind the surface */
-            continue;
-        if (!job->opt->local_only) {
-            /* §3.8 shadow ray to the light: any surface in between blocks it (opaque shadows) */
-            RfRay sr = rf_ray(offset_origin(job, h.point, h.normal, ls.l), ls.l);
-            double dist = isinf(ls.distance) ? HUGE_VAL
-                                             : rf_vec3_length(rf_vec3_sub(rf_vec3_add(h.point,
-                                                   rf_vec3_scale(ls.l, ls.distance)), sr.origin));
-            st->shadow_rays++;
-            if (rf_tracer_occluded(t, sr, 0.0, dist))
-                continue;
-        }
-        RfPhong ph = rf_phong(n, ls.l, v, zero, kd, ks, m->shininess, ls.i);
-        color = rf_rgb_add(color, rf_rgb_add(ph.diffuse, ph.specular));
-    }
-    if (job->opt->local_only || depth >= job->max_depth)
-        return color;
-    RfRgb kr = (m->kr), kt = (m->kt);
-    int reflects = rgb_max(kr) > 0.0, transmits = rgb_max(kt) > 0.0;
-    if (!reflects && !transmits)
-        return color;
-    /* §3.8.1: entering through the front (outside) goes from air (1) into the material */
-    double eta_i = h.front ? 1.0 : m->ior, eta_t = h.front ? m->ior : 1.0;
-    double cos_i = fmin(1.0, fmax(0.0, rf_vec3_dot(v, n)));
-    RfVec3 tdir;
-    int refracts = transmits && rf_refract(v, n, eta_i, eta_t, &tdir);
-    double fr = 0.0, ft = 1.0;
-    if (m->flags & RF_MAT_FRESNEL) {
-        RfFresnel f = rf_fresnel(eta_i, eta_t, cos_i, RF_FRESNEL_EXACT);
-        fr = f.r;
-        ft = f.t;
-    } else {
-        fr = 1.0;
-    }
-    /* total internal reflection: the transmitted share goes into the mirror ray */
-    RfRgb wr = rf_rgb_scale(kr, fr), wt = rf_rgb_scale(kt, ft);
-    if (transmits && !refracts) {
-        wr = (m->flags & RF_MAT_FRESNEL) ? rf_rgb_add(wr, wt) : rf_rgb_add(wr, kt);
-        wt = zero;
-    }
-    if (rgb_max(wr) > 0.0 && weight * rgb_max(wr) >= job->min_contribution) {
-        RfVec3 rdir = rf_reflect_dir(rf_vec3_neg(v), n);
-        RfRay rr = rf_ray(offset_origin(job, h.point, h.normal, rdir), rdir);
-        st->secondary_rays++;
-        color = rf_rgb_add(color, rf_rgb_mul(wr, trace(job, rr, 0.0, depth + 1, weight * rgb_max(wr), st)));
-    }
-    if (refracts && rgb_max(wt) > 0.0 && weight * rgb_max(wt) >= job->min_contribution) {
-        RfRay tr = rf_ray(offset_origin(job, h.point, h.normal, tdir), tdir);
-        st->secondary_rays++;
-        color = rf_rgb_add(color, rf_rgb_mul(wt, trace(job, tr, 0.0, depth + 1, weight * rgb_max(wt), st)));
-    }
-    return color;
-}
-
-/* The sub-pixel position of sample k of n: the centre for n = 1, stratified jitter on a k x k
- * grid when n is a perfect square, otherwise uniform jitter. */
-static void sample_offset(int n, int k, uint64_t pixel, uint64_t seed, double *sx, double *sy)
-{
-    if (n == 1) {
-        *sx = *sy = 0.5;
-        return;
-    }
-    double u = rf_rng_uniform(pixel, (uint32_t)k, 0, seed), v = rf_rng_uniform(pixel, (uint32_t)k, 1, seed);
-    int side = (int)floor(sqrt((double)n) + 0.5);
-    if (side * side == n) {
-        *sx = ((k % side) + u) / side;
-        *sy = ((k / side) + v) / side;
-    } else {
-        *sx = u;
-        *sy = v;
-    }
-}
-
-static double seconds_between(struct timespec a, struct timespec b)
-{
-    return (double)(b.tv_sec - a.tv_sec) + 1e-9 * (double)(b.tv_nsec - a.tv_nsec);
-}
-
-static int render_tile(void *ctx, RfTile tile, int thread)
-{
-    const Job *job = ctx;
-    RfRenderStats *st = &job->per_thread[thread];
-    for (int y = tile.y0; y < tile.y1; y++)
-        for (int x = tile.x0; x < tile.x1; x++) {
-            uint64_t pixel = (uint64_t)y * (uint64_t)job->width + (uint64_t)x;
-            RfRgb sum = rf_rgb(0, 0, 0);
-            for (int k = 0; k < job->samples; k++) {
-                double sx, sy;
-                sample_offset(job->samples, k, pixel, job->opt->seed, &sx, &sy);
-                RfRay ray = rf_camera_ray(&job->camera, x + sx, y + sy, 0.0, 0.0);
-                /* the hither plane: nothing nearer than `hither` along the view axis -w */
-                double t_min = job->hither > 0.0
-                                   ? job->hither / -rf_vec3_dot(ray.dir, job->camera.basis.w)
-                                   : 0.0;
-                st->primary_rays++;
-                RfRgb c = trace(job, ray, t_min, 1, 1.0, st);
-                if (!isfinite(c.r) || !isfinite(c.g) || !isfinite(c.b)) {
-                    /* never let NaN/Inf reach the film: count it (reported), store black */
-                    st->invalid_samples++;
-                    c = rf_rgb(0, 0, 0);
-                }
-                sum = rf_rgb_add(sum, c);
-            }
-            float *px = job->img->data + (size_t)pixel * 3;
-            px[0] = (float)(sum.r / job->samples);
-            px[1] = (float)(sum.g / job->samples);
-            px[2] = (float)(sum.b / job->samples);
-        }
-    return 0;
-}
-
-static void job_progress(void *ctx, int done, int total)
-{
-    const Job *job = ctx;
-    job->opt->progress(job->opt->progress_ctx, done, total);
-}
-
-RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *img, RfRenderStats *stats)
-{
-    Job job;
-    RfStatus st;
-    memset(&job, 0, sizeof job);
-    memset(stats, 0, sizeof *stats);
-    job.opt = opt;
-    job.width = opt->width > 0 ? opt->width : scene->render.width;
-    job.height = opt->height > 0 ? opt->height : scene->render.height;
-    job.samples = opt->samples > 0 ? opt->samples : (scene->render.samples > 0 ? scene->render.samples : 1);
-    job.max_depth = opt->max_depth > 0 ? opt->max_depth : scene->render.max_depth;
-    job.min_contribution = scene->render.min_contribution;
-    job.background = (scene->render.background);
-    job.ambient = (scene->render.ambient);
-    if (job.width <= 0 || job.height <= 0 || job.max_depth <= 0 || !scene->has_camera)
-        return RF_ERR_DOMAIN;
-    const RfSceneCamera *sc = &scene->camera;
-    RfWindow w = rf_scene_camera_window(sc, job.width, job.height);
-    st = rf_camera_init(&job.camera, sc->eye, sc->target, sc->up, w.d, w.l, w.r, w.b, w.t, job.width, job.height);
-    if (st != RF_OK)
-        return st;
-    job.hither = sc->hither;
-    int threads = opt->threads > 0 ? opt->threads : rf_cpu_count();
-    job.per_thread = calloc((size_t)threads, sizeof *job.per_thread);
-    if (!job.per_thread)
-        return RF_ERR_NOMEM;
-    RfTracer *tracer = NULL;
-    RfTracerOptions topt = opt->accel;
-    if (topt.threads <= 0)
-        topt.threads = threads;
-    struct timespec t0, t1, t2;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
-    st = rf_tracer_create_opts(scene, &topt, &tracer);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    if (st == RF_OK)
-        st = rf_image_alloc(img, job.width, job.height, 3);
-    if (st == RF_OK) {
-        stats->accel_bytes = rf_tracer_bytes(tracer);
-        job.tracer = tracer;
-        job.img = img;
-        st = rf_parallel_tiles(job.width, job.height, 16, threads, render_tile,
-                               opt->progress ? job_progress : NULL, &job);
-    }
-    clock_gettime(CLOCK_MONOTONIC, &t2);
-    stats->build_seconds = seconds_between(t0, t1);
-    stats->trace_seconds = seconds_between(t1, t2);
-    for (int i = 0; i < threads; i++) {
-        stats->primary_rays += job.per_thread[i].primary_rays;
-        stats->shadow_rays += job.per_thread[i].shadow_rays;
-        stats->secondary_rays += job.per_thread[i].secondary_rays;
-        stats->invalid_samples += job.per_thread[i].invalid_samples;
-    }
-    stats->width = job.width;
-    stats->height = job.height;
-    stats->samples = job.samples;
-    stats->max_depth = job.max_depth;
-    stats->threads = threads;
-    stats->features = rf_scene_features(scene);
-    free(job.per_thread);
-    rf_tracer_free(tracer);
-    if (st != RF_OK)
-        rf_image_free(img);
-    return st;
 }

@@ -1,0 +1,261 @@
+/* rf_render (render.h): the job of a render, the choice of its kernel (kernel.h), threads over
+ * tiles, and the statistics. */
+#include "refray/render.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "kernel.h"
+#include "refray/numeric.h"
+
+RfRenderOptions rf_render_options_default(void)
+{
+    RfRenderOptions o;
+    memset(&o, 0, sizeof o);
+    o.seed = 1;
+    return o;
+}
+
+/* ---- which kernel ---- */
+
+static const char *const part_names[RF_K_COUNT] = {"shadow", "secondary", "fresnel", "specular", "ambient",
+                                                   "emission", "spot", "directional", "falloff", "jitter"};
+
+/* The parts a render of this scene with these options needs (kernel.h). */
+static unsigned needed_parts(const RfScene *scene, const RfRenderOptions *opt, int samples, int max_depth)
+{
+    unsigned f = rf_scene_features(scene), k = 0;
+    if (!opt->local_only && scene->light_count > 0)
+        k |= RF_K_SHADOW;
+    if (!opt->local_only && max_depth > 1 && (f & (RF_FEAT_REFLECTION | RF_FEAT_TRANSMISSION))) {
+        k |= RF_K_SECONDARY;
+        if (f & RF_FEAT_FRESNEL)
+            k |= RF_K_FRESNEL;
+    }
+    if (f & RF_FEAT_SPECULAR)
+        k |= RF_K_SPECULAR;
+    if (f & RF_FEAT_AMBIENT)
+        k |= RF_K_AMBIENT;
+    if (f & RF_FEAT_EMISSION)
+        k |= RF_K_EMISSION;
+    if (f & RF_FEAT_LIGHT_FALLOFF)
+        k |= RF_K_FALLOFF;
+    for (size_t i = 0; i < scene->light_count; i++) {
+        if (scene->lights[i].kind == RF_LIGHT_SPOT)
+            k |= RF_K_SPOT;
+        if (scene->lights[i].kind == RF_LIGHT_DIRECTIONAL)
+            k |= RF_K_DIRECTIONAL;
+    }
+    if (samples > 1)
+        k |= RF_K_JITTER;
+    return k;
+}
+
+static int popcount(unsigned x)
+{
+    int n = 0;
+    for (; x; x &= x - 1)
+        n++;
+    return n;
+}
+
+/* The compiled kernel with the fewest parts that has all the needed ones (the general kernel
+ * has them all), or the one asked for when it has them; NULL otherwise. */
+static const RfKernel *choose_kernel(unsigned needed, unsigned asked)
+{
+    const RfKernel *best = NULL;
+    for (int i = 0; i < rf_kernel_count; i++) {
+        const RfKernel *k = &rf_kernels[i];
+        if ((k->parts & needed) != needed || (asked && k->parts != asked))
+            continue;
+        if (!best || popcount(k->parts) < popcount(best->parts))
+            best = k;
+    }
+    return best;
+}
+
+unsigned rf_kernel_all_parts(void) { return RF_K_ALL; }
+
+int rf_kernel_count_compiled(void) { return rf_kernel_count; }
+
+unsigned rf_kernel_compiled(int i) { return i >= 0 && i < rf_kernel_count ? rf_kernels[i].parts : 0; }
+
+static int render_size(const RfScene *scene, const RfRenderOptions *opt, int *samples, int *max_depth)
+{
+    *samples = opt->samples > 0 ? opt->samples : (scene->render.samples > 0 ? scene->render.samples : 1);
+    *max_depth = opt->max_depth > 0 ? opt->max_depth : scene->render.max_depth;
+    return *max_depth > 0;
+}
+
+unsigned rf_render_kernel(const RfScene *scene, const RfRenderOptions *opt)
+{
+    int samples, max_depth;
+    render_size(scene, opt, &samples, &max_depth);
+    const RfKernel *k = choose_kernel(needed_parts(scene, opt, samples, max_depth), opt->kernel);
+    return k ? k->parts : 0;
+}
+
+const char *rf_kernel_name(unsigned parts, char *buf, size_t size)
+{
+    size_t n = (size_t)snprintf(buf, size, "general");
+    for (int b = 0; b < RF_K_COUNT; b++)
+        if (!(parts & (1u << b)))
+            n += (size_t)snprintf(buf + n, n < size ? size - n : 0, "-%s", part_names[b]);
+    return buf;
+}
+
+unsigned rf_kernel_parse(const char *name)
+{
+    unsigned parts = RF_K_ALL;
+    if (strncmp(name, "general", 7) != 0)
+        return 0;
+    for (const char *s = name + 7; *s;) {
+        if (*s++ != '-')
+            return 0;
+        size_t len = strcspn(s, "-");
+        int b = 0;
+        while (b < RF_K_COUNT && !(strlen(part_names[b]) == len && strncmp(s, part_names[b], len) == 0))
+            b++;
+        if (b == RF_K_COUNT)
+            return 0;
+        parts &= ~(1u << b);
+        s += len;
+    }
+    for (int i = 0; i < rf_kernel_count; i++)
+        if (rf_kernels[i].parts == parts)
+            return parts;
+    return 0;
+}
+
+/* ---- the render ---- */
+
+static double seconds_between(struct timespec a, struct timespec b)
+{
+    return (double)(b.tv_sec - a.tv_sec) + 1e-9 * (double)(b.tv_nsec - a.tv_nsec);
+}
+
+typedef struct {
+    RfKernelJob job;
+    RfTileFn tile;
+    const RfRenderOptions *opt;
+} Run;
+
+static int run_tile(void *ctx, RfTile tile, int thread)
+{
+    Run *r = ctx;
+    return r->tile(&r->job, tile, thread);
+}
+
+static void run_progress(void *ctx, int done, int total)
+{
+    Run *r = ctx;
+    r->opt->progress(r->opt->progress_ctx, done, total);
+}
+
+RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *img, RfRenderStats *stats)
+{
+    Run run;
+    RfKernelJob *job = &run.job;
+    RfStatus st;
+    memset(&run, 0, sizeof run);
+    memset(stats, 0, sizeof *stats);
+    run.opt = opt;
+    job->width = opt->width > 0 ? opt->width : scene->render.width;
+    job->height = opt->height > 0 ? opt->height : scene->render.height;
+    if (!render_size(scene, opt, &job->samples, &job->max_depth) || job->width <= 0 || job->height <= 0 ||
+        !scene->has_camera)
+        return RF_ERR_DOMAIN;
+    job->local_only = opt->local_only;
+    job->fixed_offset = opt->fixed_offset;
+    job->seed = opt->seed;
+    job->min_contribution = scene->render.min_contribution;
+    job->background = scene->render.background;
+    job->ambient = scene->render.ambient;
+    job->materials = scene->materials;
+    const RfSceneCamera *sc = &scene->camera;
+    RfWindow w = rf_scene_camera_window(sc, job->width, job->height);
+    st = rf_camera_init(&job->camera, sc->eye, sc->target, sc->up, w.d, w.l, w.r, w.b, w.t, job->width, job->height);
+    if (st != RF_OK)
+        return st;
+    job->hither = sc->hither;
+    unsigned needed = needed_parts(scene, opt, job->samples, job->max_depth);
+    const RfKernel *kernel = choose_kernel(needed, opt->kernel);
+    if (!kernel) /* a kernel asked for that lacks a part the scene needs */
+        return RF_ERR_DOMAIN;
+    run.tile = kernel->tile;
+    int threads = opt->threads > 0 ? opt->threads : rf_cpu_count();
+    job->per_thread = calloc((size_t)threads, sizeof *job->per_thread);
+    RfKernelLight *lights = malloc(sizeof *lights * (scene->light_count + 1));
+    double *column_x = malloc(sizeof *column_x * (size_t)job->width);
+    double *row_y = malloc(sizeof *row_y * (size_t)job->height);
+    if (!job->per_thread || !lights || !column_x || !row_y) {
+        free(job->per_thread);
+        free(lights);
+        free(column_x);
+        free(row_y);
+        return RF_ERR_NOMEM;
+    }
+    for (size_t i = 0; i < scene->light_count; i++) {
+        const RfLight *l = &scene->lights[i];
+        lights[i].kind = l->kind;
+        lights[i].falloff = l->falloff;
+        lights[i].position = l->position;
+        lights[i].direction = l->direction;
+        lights[i].intensity = l->intensity;
+        lights[i].spot_exponent = l->spot_exponent;
+        lights[i].spot_cutoff_rad = l->spot_cutoff * (RF_PI / 180.0);
+    }
+    job->lights = lights;
+    job->light_count = (int)scene->light_count;
+    /* the pixel centres' image-plane coordinates (§3.4, as rf_camera_plane_point) */
+    const RfCamera *cam = &job->camera;
+    for (int x = 0; x < job->width; x++)
+        column_x[x] = cam->l + (cam->r - cam->l) * ((double)x + 0.5) / (double)cam->nx;
+    for (int y = 0; y < job->height; y++)
+        row_y[y] = cam->t - (cam->t - cam->b) * ((double)y + 0.5) / (double)cam->ny;
+    job->column_x = column_x;
+    job->row_y = row_y;
+    RfTracer *tracer = NULL;
+    RfTracerOptions topt = opt->accel;
+    if (topt.threads <= 0)
+        topt.threads = threads;
+    struct timespec t0, t1, t2;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    st = rf_tracer_create_opts(scene, &topt, &tracer);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    if (st == RF_OK)
+        st = rf_image_alloc(img, job->width, job->height, 3);
+    if (st == RF_OK) {
+        stats->accel_bytes = rf_tracer_bytes(tracer);
+        job->tracer = tracer;
+        job->img = img;
+        st = rf_parallel_tiles(job->width, job->height, 16, threads, run_tile, opt->progress ? run_progress : NULL,
+                               &run);
+    }
+    clock_gettime(CLOCK_MONOTONIC, &t2);
+    stats->build_seconds = seconds_between(t0, t1);
+    stats->trace_seconds = seconds_between(t1, t2);
+    for (int i = 0; i < threads; i++) {
+        stats->primary_rays += job->per_thread[i].primary_rays;
+        stats->shadow_rays += job->per_thread[i].shadow_rays;
+        stats->secondary_rays += job->per_thread[i].secondary_rays;
+        stats->invalid_samples += job->per_thread[i].invalid_samples;
+    }
+    stats->width = job->width;
+    stats->height = job->height;
+    stats->samples = job->samples;
+    stats->max_depth = job->max_depth;
+    stats->threads = threads;
+    stats->features = rf_scene_features(scene);
+    stats->kernel = kernel->parts;
+    free(job->per_thread);
+    free(lights);
+    free(column_x);
+    free(row_y);
+    rf_tracer_free(tracer);
+    if (st != RF_OK)
+        rf_image_free(img);
+    return st;
+}
