@@ -3,6 +3,7 @@
  * the caller), with the vector and the scalar kernels, on random scenes, degenerate ones and
  * rays through shared edges. */
 #include <stdlib.h>
+#include <string.h>
 
 #include "refray/bvh.h"
 #include "rf_test.h"
@@ -60,7 +61,9 @@ static int ball_hit(void *ctx, uint64_t key, const RfBvhRay *r, double t_min, do
 /* The reference: every item, in key order, with the double kernels and the same rules. */
 static RfBvhHit brute_nearest(const Scene *s, RfRay ray, double t_min, double t_max, int *occluded)
 {
-    RfBvhHit best = {t_max, 0, NULL, NULL, 0, 0};
+    RfBvhHit best;
+    memset(&best, 0, sizeof best);
+    best.t = t_max;
     RfWatertightRay wr = rf_watertight_ray(ray);
     *occluded = 0;
     for (int i = 0; i < s->n_tris + s->n_balls; i++) {
@@ -110,7 +113,9 @@ static void check_rays(Scene *s, const RfRay *rays, int n, double t_max, const c
             RfBvhHit want = brute_nearest(s, rays[i], 0.0, t_max, &occ);
             RfBvhRay br;
             rf_bvh_ray_init(&bvh, rays[i], &br);
-            RfBvhHit got = {t_max, 0, NULL, NULL, 0, 0};
+            RfBvhHit got;
+            memset(&got, 0, sizeof got);
+            got.t = t_max;
             rf_bvh_nearest(&bvh, &br, 0.0, &got, ball_hit, s);
             int gocc = rf_bvh_occluded(&bvh, &br, 0.0, t_max, ball_hit, s);
             rf_test_checks++;
@@ -211,7 +216,9 @@ static void t_bvh_degenerate(void)
     RfBvhDesc d = {0, describe, &e, 1, 0};
     RF_CHECK_EQ_INT(rf_bvh_build(&bvh, &d), RF_OK);
     RfBvhRay br;
-    RfBvhHit best = {HUGE_VAL, 0, NULL, NULL, 0, 0};
+    RfBvhHit best;
+    memset(&best, 0, sizeof best);
+    best.t = HUGE_VAL;
     rf_bvh_ray_init(&bvh, rf_ray(rf_vec3(0, 0, 0), rf_vec3(1, 0, 0)), &br);
     RF_CHECK_EQ_INT(rf_bvh_nearest(&bvh, &br, 0, &best, ball_hit, &e), 0);
     rf_bvh_free(&bvh);

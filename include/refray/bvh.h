@@ -137,14 +137,16 @@ typedef int (*RfBvhItemFn)(void *ctx, uint64_t key, const RfBvhRay *ray, double 
 
 /* The nearest hit so far: t and key. Start with key 0 for "none" (t is then an exclusive limit)
  * or with a hit's key (a later hit at the same t must have a lower key). When a triangle or a
- * sphere of the BVH is the nearest: tri or sphere (the other NULL), far (a sphere's far root,
- * for rf_sphere_root_normal) and its user bits; both NULL for the caller's items. */
+ * sphere of the BVH is the nearest: tri or sphere (the other NULL), for a sphere its roots and
+ * far (the far root: rf_sphere_root_normal), and the user bits; both NULL for the caller's
+ * items. */
 typedef struct {
     double t;
     uint64_t key;
     const RfTriangle *tri;
     const RfSphere *sphere;
     int far;
+    RfSphereRoots roots; /* the sphere's, for rf_sphere_root_normal */
     uint32_t user;
 } RfBvhHit;
 

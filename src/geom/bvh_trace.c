@@ -31,6 +31,13 @@ void rf_bvh_ray_init(const RfBvh *bvh, RfRay ray, RfBvhRay *r)
     r->tri_ready = 0;
     const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
     const double d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
+    double inv[4]; /* 1/d: +-inf for +-0 */
+#if RF_BVH_AVX
+    _mm256_storeu_pd(inv, _mm256_div_pd(_mm256_set1_pd(1.0), _mm256_set_pd(1.0, d[2], d[1], d[0])));
+#else
+    for (int a = 0; a < 3; a++)
+        inv[a] = 1.0 / d[a];
+#endif
     for (int a = 0; a < 3; a++) {
         /* Slab distances (plane - origin) * inv, rounded toward "hit" (docs/performance.md):
          * the near plane's origin moved so the difference can only shrink, the far plane's so
@@ -44,7 +51,7 @@ void rf_bvh_ray_init(const RfBvh *bvh, RfRay ray, RfBvhRay *r)
         r->near_hi[a] = neg;
         r->org[0][a] = neg ? down : up;
         r->org[1][a] = neg ? up : down;
-        float fi = (float)(1.0 / d[a]); /* +-inf for +-0 */
+        float fi = (float)inv[a];
         float near = fi * (1.0f - 0x1p-21f), far = fi * (1.0f + 0x1p-21f);
         r->inv[0][a] = fabsf(near) <= 0x1p127f ? near : neg ? -0x1p127f : 0x1p127f;
         r->inv[1][a] = far;
@@ -270,7 +277,7 @@ static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double 
  * sphere shows (a hidden side passes the ray on to the far root; any = 1: either side). Returns
  * the root + 1 (1 near, 2 far) or 0, and its t. */
 static inline int sphere_hit(const RfBvhOther *o, const RfRay *ray, double t_min, double lim, uint64_t lim_key,
-                             int any, double *t)
+                             int any, double *t, RfSphereRoots *roots)
 {
     RfSphereRoots r;
     if (!rf_sphere_roots(*ray, o->sphere, &r))
@@ -289,6 +296,7 @@ static inline int sphere_hit(const RfBvhOther *o, const RfRay *ray, double t_min
             }
         }
         *t = tc;
+        *roots = r;
         return c + 1;
     }
     return 0;
@@ -302,7 +310,8 @@ static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r,
     for (; o < end; o++) {
         double t;
         if (o->kind == RF_BVH_SPHERE) {
-            int root = sphere_hit(o, &r->ray, t_min, best->t, any ? 0 : best->key, any, &t);
+            RfSphereRoots roots;
+            int root = sphere_hit(o, &r->ray, t_min, best->t, any ? 0 : best->key, any, &t, &roots);
             if (!root)
                 continue;
             if (any)
@@ -312,6 +321,7 @@ static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r,
             best->tri = NULL;
             best->sphere = &o->sphere;
             best->far = root == 2;
+            best->roots = roots;
             best->user = o->user & USER_BITS;
             improved = 1;
             continue;
@@ -409,6 +419,8 @@ int rf_bvh_nearest(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best
 int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,
                     RfBvhItemFn fn, void *ctx)
 {
-    RfBvhHit lim = {t_max, 0, NULL, NULL, 0, 0};
+    RfBvhHit lim;
+    memset(&lim, 0, sizeof lim);
+    lim.t = t_max;
     return traverse(bvh, ray, t_min, &lim, fn, ctx, 1);
 }

@@ -3,6 +3,10 @@
 
 #include <math.h>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 RfStatus rf_camera_init(RfCamera *cam, RfVec3 eye, RfVec3 target, RfVec3 up, double d, double l,
                         double r, double b, double t, int nx, int ny)
 {
@@ -49,9 +53,17 @@ RfStatus rf_camera_set_lens(RfCamera *cam, double aperture_radius, double focal_
 /* §3.4: lambda1 runs from l (left edge) to r, lambda2 from t (top row) down to b. */
 RfVec3 rf_camera_plane_point(const RfCamera *cam, double px, double py)
 {
+#if defined(__SSE2__)
+    /* the two divisions as one instruction: the same quotients */
+    double q[2];
+    _mm_storeu_pd(q, _mm_div_pd(_mm_set_pd((cam->t - cam->b) * py, (cam->r - cam->l) * px),
+                                _mm_set_pd((double)cam->ny, (double)cam->nx)));
+    return rf_vec3(cam->l + q[0], cam->t - q[1], -cam->d);
+#else
     double l1 = cam->l + (cam->r - cam->l) * px / (double)cam->nx;
     double l2 = cam->t - (cam->t - cam->b) * py / (double)cam->ny;
     return rf_vec3(l1, l2, -cam->d);
+#endif
 }
 
 RfVec3 rf_camera_to_world(const RfCamera *cam, RfVec3 c)

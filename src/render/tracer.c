@@ -524,7 +524,9 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
             bt = t, bk = key, found = 1;
         }
     }
-    RfBvhHit best = {bt, bk, NULL, NULL, 0, 0};
+    RfBvhHit best;
+    best.tri = NULL;
+    best.sphere = NULL;
     RfBvhRay br;
     if (q->tracer->opt.brute_force) {
         /* every item, in key order, with the double kernels alone: the reference for the BVH */
@@ -556,11 +558,9 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
         if (best.tri) {
             rf_intersect_triangle_watertight(&br.wr, *best.tri, t_min, HUGE_VAL, &q->hit);
         } else {
-            RfSphereRoots r;
-            rf_sphere_roots(ray, *best.sphere, &r);
             q->hit.t = bt;
             q->hit.l[0] = q->hit.l[1] = q->hit.l[2] = 0.0;
-            q->hit.normal = rf_sphere_root_normal(&r, ray, *best.sphere, best.far);
+            q->hit.normal = rf_sphere_root_normal(&best.roots, ray, *best.sphere, best.far);
         }
         q->item = key_item(bk);
         q->material = (int)(best.user & USER_MATERIAL);
