@@ -117,7 +117,20 @@ static void check_rays(Scene *s, const RfRay *rays, int n, double t_max, const c
             memset(&got, 0, sizeof got);
             got.t = t_max;
             rf_bvh_nearest(&bvh, &br, 0.0, &got, ball_hit, s);
-            int gocc = rf_bvh_occluded(&bvh, &br, 0.0, t_max, ball_hit, s);
+            uint64_t occ_key = 0;
+            int gocc = rf_bvh_occluded(&bvh, &br, 0.0, t_max, ball_hit, s, &occ_key);
+            /* the item reported occludes: it is hit in range */
+            if (gocc) {
+                int item = (int)(occ_key - 1), occ1 = 0;
+                RfHit hh;
+                if (item < s->n_tris) {
+                    RfWatertightRay wr1 = rf_watertight_ray(rays[i]);
+                    occ1 = rf_intersect_triangle_watertight(&wr1, s->tris[item], 0.0, t_max, &hh);
+                } else {
+                    occ1 = rf_intersect_sphere(rays[i], s->balls[item - s->n_tris], RF_SPHERE_STABLE, 0.0, t_max, &hh);
+                }
+                RF_CHECK(occ1);
+            }
             rf_test_checks++;
             if (got.key != want.key || (want.key && got.t != want.t) || gocc != occ) {
                 rf_test_fail(__FILE__, __LINE__, "%s (%s) ray %d: bvh key %llu t %.17g occluded %d, brute force key %llu t %.17g occluded %d",
@@ -221,6 +234,7 @@ static void t_bvh_degenerate(void)
     best.t = HUGE_VAL;
     rf_bvh_ray_init(&bvh, rf_ray(rf_vec3(0, 0, 0), rf_vec3(1, 0, 0)), &br);
     RF_CHECK_EQ_INT(rf_bvh_nearest(&bvh, &br, 0, &best, ball_hit, &e), 0);
+    RF_CHECK_EQ_INT(rf_bvh_occluded(&bvh, &br, 0, HUGE_VAL, ball_hit, &e, NULL), 0);
     rf_bvh_free(&bvh);
     /* 300 identical spheres and 300 identical triangles: no SAH split exists */
     enum { N = 300 };

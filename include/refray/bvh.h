@@ -155,9 +155,10 @@ typedef struct {
  * when best changed. */
 int rf_bvh_nearest(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best,
                    RfBvhItemFn fn, void *ctx);
-/* 1 when anything is hit at t_min <= t < t_max, seen from either side (shadow rays). */
+/* 1 when anything is hit at t_min <= t < t_max, seen from either side (shadow rays); *key (may
+ * be NULL) gets the key of the item found. */
 int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,
-                    RfBvhItemFn fn, void *ctx);
+                    RfBvhItemFn fn, void *ctx, uint64_t *key);
 
 #ifdef __cplusplus
 }

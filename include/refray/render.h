@@ -98,6 +98,10 @@ int rf_tracer_intersect(const RfTracer *tracer, RfRay ray, double t_min, double 
 /* 1 when anything is hit at t in [t_min, t_max), seen from either side: a shadow ray's
  * occlusion query (it stops at the first hit). */
 int rf_tracer_occluded(const RfTracer *tracer, RfRay ray, double t_min, double t_max);
+/* The same answer, with a cache (POV-Ray's "shadow cache"): *last holds the primitive that
+ * occluded the previous query (0: none; keep one per light and thread), which is tested first;
+ * *last then becomes the occluder found, or 0 when nothing occludes. */
+int rf_tracer_occluded_cached(const RfTracer *tracer, RfRay ray, double t_min, double t_max, uint64_t *last);
 
 /* The self-intersection policy (numeric.h RF_RAY_OFFSET_REL): the hit point p moved off the
  * surface along the unit geometric normal n to the side dir leaves by. fixed_offset > 0 moves

@@ -19,8 +19,8 @@
 #define BINS 32          /* centroid bins per split (Wald 2007 uses 16 or 32) */
 #define MAX_LEAF 8       /* items in a leaf (two triangle blocks) */
 #define SAH_DEPTH 32     /* deeper, splits halve the range: depth stays below 64 */
-#define COST_NODE 1.0f   /* SAH cost of a node visit, in triangle blocks */
-#define COST_OTHER 1.0f  /* SAH cost of an item tested by the caller, in triangle blocks */
+#define COST_NODE 1.5f   /* SAH cost of a node visit, in triangle blocks */
+#define COST_OTHER 2.0f  /* SAH cost of an item tested by the caller, in triangle blocks */
 #define PAR_BIN 65536    /* ranges at least this long are binned on every thread */
 #define TASK_MIN 4096    /* the top levels are split until subtrees are this small ... */
 #define TASKS_PER_THREAD 8 /* ... or there are about this many per thread */

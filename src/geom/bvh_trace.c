@@ -248,8 +248,10 @@ static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double 
             if (key == 0 || !rf_watertight_t(&r->wr, &blk->tri[k], &t) || !(t >= t_min))
                 continue;
             if (any) {
-                if (t < best->t)
+                if (t < best->t) {
+                    best->key = key;
                     return 1;
+                }
                 continue;
             }
             if (!(t < best->t || (t == best->t && key < best->key)))
@@ -314,8 +316,10 @@ static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r,
             int root = sphere_hit(o, &r->ray, t_min, best->t, any ? 0 : best->key, any, &t, &roots);
             if (!root)
                 continue;
-            if (any)
+            if (any) {
+                best->key = o->key;
                 return 1;
+            }
             best->t = t;
             best->key = o->key;
             best->tri = NULL;
@@ -328,8 +332,10 @@ static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r,
         }
         if (!fn(ctx, o->key, r, t_min, best->t, !any && o->key < best->key, &t))
             continue;
-        if (any)
+        if (any) {
+            best->key = o->key;
             return 1;
+        }
         best->t = t;
         best->key = o->key;
         best->tri = NULL;
@@ -417,10 +423,13 @@ int rf_bvh_nearest(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best
 }
 
 int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,
-                    RfBvhItemFn fn, void *ctx)
+                    RfBvhItemFn fn, void *ctx, uint64_t *key)
 {
     RfBvhHit lim;
     memset(&lim, 0, sizeof lim);
     lim.t = t_max;
-    return traverse(bvh, ray, t_min, &lim, fn, ctx, 1);
+    int hit = traverse(bvh, ray, t_min, &lim, fn, ctx, 1);
+    if (hit && key)
+        *key = lim.key;
+    return hit;
 }

@@ -52,6 +52,7 @@ typedef struct {
     uint64_t seed;
     RfImage *img;
     RfRenderStats *per_thread;      /* one per thread: no sharing on the hot path */
+    uint64_t *shadow_cache;         /* per thread and light: the last occluder (rf_tracer_occluded_cached) */
 } RfKernelJob;
 
 typedef struct {

@@ -14,7 +14,7 @@
 /* The colour seen along ray (hits in [t_min, inf)); depth 1 is the primary ray, weight the
  * product of the reflection/transmission weights on the way here. */
 static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, int depth, double weight,
-                             RfRenderStats *st)
+                             RfRenderStats *st, uint64_t *shadow_cache)
 {
     RfSurfaceHit h;
     if (rf_tracer_intersect(job->tracer, ray, t_min, HUGE_VAL, &h) < 0)
@@ -61,7 +61,7 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
                                              : rf_vec3_length(rf_vec3_sub(rf_vec3_add(h.point,
                                                    rf_vec3_scale(ls.l, ls.distance)), sr.origin));
             st->shadow_rays++;
-            if (rf_tracer_occluded(job->tracer, sr, 0.0, dist))
+            if (rf_tracer_occluded_cached(job->tracer, sr, 0.0, dist, &shadow_cache[li]))
                 continue;
         }
         /* §3.6.2 Phong, as rf_phong: only positive scalar products contribute */
@@ -107,12 +107,12 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
         RfVec3 rdir = rf_reflect_dir(rf_vec3_neg(v), n);
         RfRay rr = rf_ray(rf_ray_offset_origin(h.point, h.normal, rdir, job->fixed_offset), rdir);
         st->secondary_rays++;
-        color = rf_rgb_add(color, rf_rgb_mul(wr, RF_KNAME(trace)(job, rr, 0.0, depth + 1, weight * mr, st)));
+        color = rf_rgb_add(color, rf_rgb_mul(wr, RF_KNAME(trace)(job, rr, 0.0, depth + 1, weight * mr, st, shadow_cache)));
     }
     if (refracts && mt > 0.0 && weight * mt >= job->min_contribution) {
         RfRay tr = rf_ray(rf_ray_offset_origin(h.point, h.normal, tdir, job->fixed_offset), tdir);
         st->secondary_rays++;
-        color = rf_rgb_add(color, rf_rgb_mul(wt, RF_KNAME(trace)(job, tr, 0.0, depth + 1, weight * mt, st)));
+        color = rf_rgb_add(color, rf_rgb_mul(wt, RF_KNAME(trace)(job, tr, 0.0, depth + 1, weight * mt, st, shadow_cache)));
     }
     return color;
 }
@@ -123,6 +123,7 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
 {
     const RfKernelJob *job = ctx;
     RfRenderStats *st = &job->per_thread[thread];
+    uint64_t *shadow_cache = job->shadow_cache + (size_t)thread * (size_t)job->light_count;
     const RfCamera *cam = &job->camera;
     for (int y = tile.y0; y < tile.y1; y++)
         for (int x = tile.x0; x < tile.x1; x++) {
@@ -141,7 +142,7 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
                 /* the hither plane: nothing nearer than `hither` along the view axis -w */
                 double t_min = job->hither > 0.0 ? job->hither / -rf_vec3_dot(ray.dir, cam->basis.w) : 0.0;
                 st->primary_rays++;
-                RfRgb c = RF_KNAME(trace)(job, ray, t_min, 1, 1.0, st);
+                RfRgb c = RF_KNAME(trace)(job, ray, t_min, 1, 1.0, st, shadow_cache);
                 if (!isfinite(c.r) || !isfinite(c.g) || !isfinite(c.b)) {
                     /* never let NaN/Inf reach the film: count it (reported), store black */
                     st->invalid_samples++;

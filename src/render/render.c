@@ -190,7 +190,9 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     RfKernelLight *lights = malloc(sizeof *lights * (scene->light_count + 1));
     double *column_x = malloc(sizeof *column_x * (size_t)job->width);
     double *row_y = malloc(sizeof *row_y * (size_t)job->height);
-    if (!job->per_thread || !lights || !column_x || !row_y) {
+    job->shadow_cache = calloc((size_t)threads * (scene->light_count + 1), sizeof *job->shadow_cache);
+    if (!job->per_thread || !lights || !column_x || !row_y || !job->shadow_cache) {
+        free(job->shadow_cache);
         free(job->per_thread);
         free(lights);
         free(column_x);
@@ -251,6 +253,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     stats->features = rf_scene_features(scene);
     stats->kernel = kernel->parts;
     free(job->per_thread);
+    free(job->shadow_cache);
     free(lights);
     free(column_x);
     free(row_y);

@@ -391,6 +391,7 @@ typedef struct {
     RfHit hit;          /* hit.normal in the space of the query's ray */
     int instanced;      /* the hit is inside an instance: nmat takes its normals to this space */
     RfMat3 nmat;
+    uint64_t occluder;  /* shadow: the key of the world item found */
 } Query;
 
 static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, double *t_lim, uint64_t *key_lim);
@@ -520,7 +521,7 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
         double t;
         if (hit_key(q, key, ray, NULL, t_min, bt, bk, &t)) {
             if (q->shadow)
-                return 1;
+                return q->occluder = key, 1;
             bt = t, bk = key, found = 1;
         }
     }
@@ -536,14 +537,18 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
             double t;
             if (hit_key(q, key, ray, &wr, t_min, bt, bk, &t)) {
                 if (q->shadow)
-                    return 1;
+                    return q->occluder = key, 1;
                 bt = t, bk = key, found = 1;
             }
         }
     } else if (lv->bvh_count > 0) {
         rf_bvh_ray_init(&lv->bvh, ray, &br);
-        if (q->shadow)
-            return rf_bvh_occluded(&lv->bvh, &br, t_min, bt, bvh_item, q);
+        if (q->shadow) {
+            uint64_t key = 0;
+            int hit = rf_bvh_occluded(&lv->bvh, &br, t_min, bt, bvh_item, q, &key);
+            q->occluder = key;
+            return hit;
+        }
         best.t = bt;
         best.key = bk;
         if (rf_bvh_nearest(&lv->bvh, &br, t_min, &best, bvh_item, q)) {
@@ -586,6 +591,25 @@ int rf_tracer_occluded(const RfTracer *t, RfRay ray, double t_min, double t_max)
     Query q;
     q.shadow = 1;
     return trace_query(t, &q, ray, t_min, t_max);
+}
+
+int rf_tracer_occluded_cached(const RfTracer *t, RfRay ray, double t_min, double t_max, uint64_t *last)
+{
+    Query q;
+    q.tracer = t;
+    q.shadow = 1;
+    q.instanced = 0;
+    if (*last) { /* the occluder of the last query first: neighbouring shadow rays share it */
+        double tt;
+        if (hit_item(&q, key_item(*last), ray, NULL, t_min, t_max, &tt))
+            return 1;
+    }
+    if (!trace_query(t, &q, ray, t_min, t_max)) {
+        *last = 0; /* in the light: the next ray likely is too, and would test the cache in vain */
+        return 0;
+    }
+    *last = q.occluder;
+    return 1;
 }
 
 int rf_tracer_intersect(const RfTracer *t, RfRay ray, double t_min, double t_max, RfSurfaceHit *out)
