@@ -56,6 +56,8 @@ typedef struct {
     double trace_seconds; /* the rays */
     size_t accel_bytes;  /* held by the tracer (rf_tracer_bytes) */
     unsigned kernel;     /* the parts of the kernel that ran (rf_kernel_name) */
+    double busy_seconds; /* the threads' time in tiles, summed */
+    double idle_share;   /* 1 - busy / (threads x trace time): the threads' waiting at the end */
 } RfRenderStats;
 
 /* The kernel a render of this scene with these options would run: the compiled one with the

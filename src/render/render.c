@@ -142,10 +142,16 @@ typedef struct {
     const RfRenderOptions *opt;
 } Run;
 
+/* One tile, its time added to its thread's busy time (for the idle share). */
 static int run_tile(void *ctx, RfTile tile, int thread)
 {
     Run *r = ctx;
-    return r->tile(&r->job, tile, thread);
+    struct timespec a, b;
+    clock_gettime(CLOCK_MONOTONIC, &a);
+    int rc = r->tile(&r->job, tile, thread);
+    clock_gettime(CLOCK_MONOTONIC, &b);
+    r->job.per_thread[thread].busy_seconds += seconds_between(a, b);
+    return rc;
 }
 
 static void run_progress(void *ctx, int done, int total)
@@ -239,7 +245,9 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     clock_gettime(CLOCK_MONOTONIC, &t2);
     stats->build_seconds = seconds_between(t0, t1);
     stats->trace_seconds = seconds_between(t1, t2);
+    double busy = 0.0;
     for (int i = 0; i < threads; i++) {
+        busy += job->per_thread[i].busy_seconds;
         stats->primary_rays += job->per_thread[i].primary_rays;
         stats->shadow_rays += job->per_thread[i].shadow_rays;
         stats->secondary_rays += job->per_thread[i].secondary_rays;
@@ -252,6 +260,12 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     stats->threads = threads;
     stats->features = rf_scene_features(scene);
     stats->kernel = kernel->parts;
+    /* the share of the threads' time in the tile phase spent waiting (the last tiles) */
+    int used = threads < ((job->width + 15) / 16) * ((job->height + 15) / 16) ? threads
+                                                                                  : ((job->width + 15) / 16) * ((job->height + 15) / 16);
+    stats->idle_share = stats->trace_seconds > 0.0 ? 1.0 - busy / (used * stats->trace_seconds) : 0.0;
+    if (stats->idle_share < 0.0)
+        stats->idle_share = 0.0;
     free(job->per_thread);
     free(job->shadow_cache);
     free(lights);
