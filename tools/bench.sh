@@ -6,6 +6,10 @@
 #     libcgal-demo bunny, compare/make_mesh.cpp) into scenes/bench/data/, which git ignores.
 #  2. whitted and the SPD scenes: `refray render` wall, load, build and trace times.
 #  3. POV-Ray 3.7 on the same whitted scene, and the image difference.
+#  4. refray against POV-Ray 3.7: whitted at 1 and 16 spp and every SPD scene (the SPD's own
+#     POV-Ray translations in scenes/spd/pov/, depth 5, 1 spp), trace times, 1 and 2 threads.
+#  5. the specialised render kernels: each one's speed-up over the general kernel on scenes that
+#     do not need what it leaves out.
 # Usage: tools/bench.sh [refray] [refray-mesh-bench] [refray-make-mesh]; RUNS=n (default 3).
 set -e
 bin=${1:-build/refray}
@@ -98,3 +102,72 @@ if command -v povray >/dev/null 2>&1; then
 else
     echo "(POV-Ray is not installed: apt-get install povray adds the POV-Ray anchor)"
 fi
+
+# ---- 4. refray against POV-Ray -----------------------------------------------------------
+# trace time of one refray render (its summary line)
+rtrace() { "$bin" render "$@" -o "$tmp/r.exr" 2>&1 | sed -n 's/.* trace \([0-9.]*\) s.*/\1/p'; }
+# trace time of one POV-Ray render (its statistics), and its whole process in $tmp/povwall
+ptrace() {
+    s=$(date +%s.%N)
+    povray "$@" +O"$tmp/p.exr" +FE -D -V 2>&1 | tr '\r' '\n' | sed -n 's/.*Trace Time:.*(\([0-9.]*\) seconds.*/\1/p' > "$tmp/pt"
+    e=$(date +%s.%N)
+    awk -v s="$s" -v e="$e" "BEGIN {print e - s}" > "$tmp/povwall"
+    cat "$tmp/pt"
+}
+# med N CMD...: the median of N runs of a command that prints one number
+med() { n=$1; shift; i=0; while [ $i -lt "$n" ]; do "$@"; i=$((i + 1)); done | median; }
+echo
+if command -v povray >/dev/null 2>&1; then
+    echo "== 4. refray against POV-Ray 3.7, trace times (POV-Ray's statistics, refray's summary line); ratio = POV-Ray / refray"
+    printf "%-26s %8s %10s %10s %8s\n" "scene" "threads" "POV-Ray s" "refray s" "ratio"
+    for t in 1 2; do
+        for spp in 1 16; do
+            if [ $spp = 1 ]; then aa="-A"; else aa="+A0.0 +AM1 +R4 +J"; fi
+            p=$(med "$runs" ptrace +Iscenes/bench/whitted.pov +W640 +H480 $aa +WT$t)
+            r=$(med "$runs" rtrace scenes/whitted.rf --threads $t --samples $spp)
+            printf "%-26s %8d %10.3f %10.3f %7.2fx\n" "whitted 640x480 ${spp}spp" $t "$p" "$r" "$(awk -v p=$p -v r=$r 'BEGIN{print p/r}')"
+        done
+        for s in balls gears mount rings teapot tetra tree; do
+            gzip -dc scenes/spd/pov/$s.pov.gz > "$tmp/$s.pov"
+            f=scenes/spd/$s.nff; [ -f $f ] || f=scenes/spd/$s.nff.gz
+            p=$(med "$runs" ptrace +I"$tmp/$s.pov" +W512 +H512 -A +WT$t)
+            r=$(med "$runs" rtrace $f --threads $t --depth 5)
+            printf "%-26s %8d %10.3f %10.3f %7.2fx\n" "$s 512x512 depth 5" $t "$p" "$r" "$(awk -v p=$p -v r=$r 'BEGIN{print p/r}')"
+        done
+    done
+    : > "$tmp/wall"
+    i=0
+    while [ $i -lt "$runs" ]; do
+        s=$(date +%s.%N)
+        "$bin" render scenes/whitted.rf -o "$tmp/out.exr" --samples 16 --threads 2 --quiet
+        e=$(date +%s.%N)
+        awk -v s="$s" -v e="$e" "BEGIN {print e - s}" >> "$tmp/wall"
+        i=$((i + 1))
+    done
+    echo "whole process, whitted 16spp 2 threads: refray $(median < "$tmp/wall") s"
+    echo "reproduce: povray +ISCENE.pov +WW +HH -A +WTt (16 spp: +A0.0 +AM1 +R4 +J), the POV-Ray files"
+    echo "  gunzip'ed from scenes/spd/pov/; $bin render SCENE --threads t [--depth 5] [--samples 16]"
+else
+    echo "(POV-Ray is not installed: apt-get install povray adds section 4)"
+fi
+
+# ---- 5. specialised kernels --------------------------------------------------------------------
+echo
+echo "== 5. specialised kernels: trace time with the general kernel and with the one chosen for the scene"
+echo "   (it leaves out what the scene does not need; the same image), 1 thread, medians of $runs"
+printf "%-34s %-44s %9s %9s %8s\n" "scene" "kernel" "general" "chosen" "speed-up"
+spec() {
+    name=$1; shift
+    [ -f "$1" ] && [ ! -f scenes/bench/mesh.rf -o "$1" != scenes/bench/mesh.rf -o -f "$mesh" ] || return 0
+    k=$("$bin" info "$1" | sed -n 's/^kernel *//p')
+    g=$(med "$runs" rtrace "$@" --threads 1 --kernel general)
+    c=$(med "$runs" rtrace "$@" --threads 1)
+    printf "%-34s %-44s %9.3f %9.3f %7.3fx\n" "$name" "$k" "$g" "$c" "$(awk -v g=$g -v c=$c 'BEGIN{print g/c}')"
+}
+spec "tree (no highlights, no mirrors)" scenes/spd/tree.nff
+spec "tetra (no highlights, no mirrors)" scenes/spd/tetra.nff
+spec "light_point (no mirrors)" scenes/light_point.rf
+spec "balls (1 spp: no jitter)" scenes/spd/balls.nff
+spec "whitted (1 spp: no jitter)" scenes/whitted.rf
+spec "mesh (no highlights, no mirrors)" scenes/bench/mesh.rf
+echo "reproduce: $bin render SCENE -o out.exr --threads 1 [--kernel general]; $bin info SCENE names the kernel"
