@@ -22,6 +22,7 @@ extern const RfTest rf_tests_render[];
 extern const RfTest rf_tests_stress[];
 extern const RfTest rf_tests_compare[];
 extern const RfTest rf_tests_mesh[];
+extern const RfTest rf_tests_docs[];
 
 static const RfTest *const suites[] = {
     rf_tests_vecmat, rf_tests_geometry, rf_tests_transform, rf_tests_formula, rf_tests_cli,
@@ -30,6 +31,7 @@ static const RfTest *const suites[] = {
     rf_tests_stress,
     rf_tests_compare,
     rf_tests_mesh,
+    rf_tests_docs,
 };
 
 int rf_test_failed_checks;

@@ -13,7 +13,7 @@ PARTS = ["SHADOW", "SECONDARY", "FRESNEL", "SPECULAR", "AMBIENT", "EMISSION", "S
 BIT = {p: 1 << i for i, p in enumerate(PARTS)}
 ALL = (1 << len(PARTS)) - 1
 # the parts whose absence measurably saves work (instruction counts, docs/performance.md)
-SPECIALISED = sys.argv[1:] or ["SPECULAR", "SECONDARY", "JITTER"]
+SPECIALISED = sys.argv[1:] or ["SPECULAR"]
 
 
 def sets():

@@ -85,6 +85,10 @@ typedef struct {
     RfSrcLoc loc;
 } RfMaterial;
 
+/* Whether the §3.6.2 highlight ks (r.v)^n of m can add anything: some ks > 0 (or an exponent
+ * beyond 1e15, where (r.v)^n may overflow). Renderers skip the power where it cannot. */
+int rf_material_has_highlight(const RfMaterial *m);
+
 /* A black, non-reflecting, non-transmitting material with ior 1, smooth: the base every
  * reader fills in. */
 RfMaterial rf_material_default(void);
@@ -256,7 +260,7 @@ enum {
     RF_FEAT_REFLECTION = 1u << 0,     /* some material has kr > 0 */
     RF_FEAT_TRANSMISSION = 1u << 1,   /* some material has kt > 0 */
     RF_FEAT_FRESNEL = 1u << 2,        /* some reflecting/transmitting material uses Fresnel */
-    RF_FEAT_SPECULAR = 1u << 3,       /* some material has a Phong highlight (ks > 0) */
+    RF_FEAT_SPECULAR = 1u << 3,       /* some material has a highlight (rf_material_has_highlight) */
     RF_FEAT_AMBIENT = 1u << 4,        /* ka * ambient is non-zero for some material */
     RF_FEAT_EMISSION = 1u << 5,       /* some material emits */
     RF_FEAT_VERTEX_NORMALS = 1u << 6, /* some primitive interpolates vertex normals */

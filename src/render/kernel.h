@@ -40,6 +40,7 @@ typedef struct {
 typedef struct {
     const RfTracer *tracer;
     const RfMaterial *materials;
+    const unsigned char *highlight; /* per material: rf_material_has_highlight */
     const RfKernelLight *lights;
     int light_count;
     int max_depth, local_only;

@@ -69,7 +69,8 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
         double diff = nl > 0.0 ? nl : 0.0;
         RfRgb diffuse = rf_rgb_scale(rf_rgb_mul(m->kd, ls.i), diff);
         if (RF_ON(RF_K_SPECULAR)) {
-            double rv = rf_vec3_dot(rf_reflect(n, ls.l), v);
+            /* without a highlight (ks = 0) the power would only multiply a zero */
+            double rv = job->highlight[h.material] ? rf_vec3_dot(rf_reflect(n, ls.l), v) : 0.0;
             double spec = nl > 0.0 && rv > 0.0 ? pow(rv, m->shininess) : 0.0;
             RfRgb specular = rf_rgb_scale(rf_rgb_mul(m->ks, ls.i), spec);
             color = rf_rgb_add(color, rf_rgb_add(diffuse, specular));

@@ -197,7 +197,9 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     double *column_x = malloc(sizeof *column_x * (size_t)job->width);
     double *row_y = malloc(sizeof *row_y * (size_t)job->height);
     job->shadow_cache = calloc((size_t)threads * (scene->light_count + 1), sizeof *job->shadow_cache);
-    if (!job->per_thread || !lights || !column_x || !row_y || !job->shadow_cache) {
+    unsigned char *highlight = malloc(scene->material_count + 1);
+    if (!job->per_thread || !lights || !column_x || !row_y || !job->shadow_cache || !highlight) {
+        free(highlight);
         free(job->shadow_cache);
         free(job->per_thread);
         free(lights);
@@ -215,6 +217,9 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
         lights[i].spot_exponent = l->spot_exponent;
         lights[i].spot_cutoff_rad = l->spot_cutoff * (RF_PI / 180.0);
     }
+    for (size_t i = 0; i < scene->material_count; i++)
+        highlight[i] = (unsigned char)rf_material_has_highlight(&scene->materials[i]);
+    job->highlight = highlight;
     job->lights = lights;
     job->light_count = (int)scene->light_count;
     /* the pixel centres' image-plane coordinates (§3.4, as rf_camera_plane_point) */
@@ -268,6 +273,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
         stats->idle_share = 0.0;
     free(job->per_thread);
     free(job->shadow_cache);
+    free(highlight);
     free(lights);
     free(column_x);
     free(row_y);

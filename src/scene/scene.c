@@ -379,6 +379,13 @@ static RfStatus check_material(const RfMaterial *m, char *msg, size_t msgsz)
     return RF_OK;
 }
 
+int rf_material_has_highlight(const RfMaterial *m)
+{
+    /* r.v <= 1 + 10u for unit n, l, v, so pow(r.v, n) <= e^1.1 for n <= 1e15: with ks = 0 the
+     * term is then (0 * I) * finite, a zero of the same sign as with pow replaced by 0 */
+    return positive(m->ks) || m->shininess > 1e15;
+}
+
 static RfStatus located(char *err, size_t errsz, const char *source, RfSrcLoc loc,
                         const char *msg, RfStatus st)
 {
@@ -440,7 +447,7 @@ unsigned rf_scene_features(const RfScene *scene)
             f |= RF_FEAT_TRANSMISSION;
         if ((m->flags & RF_MAT_FRESNEL) && (positive(m->kr) || positive(m->kt)))
             f |= RF_FEAT_FRESNEL;
-        if (positive(m->ks))
+        if (rf_material_has_highlight(m))
             f |= RF_FEAT_SPECULAR;
         if (positive(rf_rgb_mul(m->ka, scene->render.ambient)))
             f |= RF_FEAT_AMBIENT;
