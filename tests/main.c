@@ -23,6 +23,8 @@ extern const RfTest rf_tests_stress[];
 extern const RfTest rf_tests_compare[];
 extern const RfTest rf_tests_mesh[];
 extern const RfTest rf_tests_docs[];
+extern const RfTest rf_tests_distributed[];
+extern const RfTest rf_tests_sampling[];
 
 static const RfTest *const suites[] = {
     rf_tests_vecmat, rf_tests_geometry, rf_tests_transform, rf_tests_formula, rf_tests_cli,
@@ -32,6 +34,8 @@ static const RfTest *const suites[] = {
     rf_tests_compare,
     rf_tests_mesh,
     rf_tests_docs,
+    rf_tests_sampling,
+    rf_tests_distributed,
 };
 
 int rf_test_failed_checks;

@@ -1018,7 +1018,7 @@ static void t_cli_render_output(void)
     RF_CHECK_EQ_INT(code, 0);
     RF_CHECK(strstr(out, "rays") != NULL); /* the summary line */
     static const struct { const char *name, *has; } attrs[] = {
-        {"refray:version", ""}, {"refray:scene", "scenes/whitted.rf"}, {"refray:settings", "64x48, 1 spp, depth 8"},
+        {"refray:version", ""}, {"refray:scene", "scenes/whitted.rf"}, {"refray:settings", "64x48, 1 spp stratified, filter box 0.5, depth 8"},
         {"refray:renderTime", " s"}, {"refray:threads", "2"}, {"refray:compiler", ""},
         {"refray:flags", "-ffp-contract=off"}, {"refray:cpu", ""},
     };

@@ -436,7 +436,7 @@ static const ErrCase err_cases[] = {
     {1, NFF_VIEW "q 1 2\n", "t.nff:8:1: unknown NFF keyword 'q'"},
     {0, RF_CAM "sphre 0 0 0 1\n", "t.rf:2:1: unknown keyword 'sphre'"},
     {0, RF_CAM "sphere 0 0 0 1 shiny\n", "t.rf:2:16: unknown attribute 'shiny' for 'sphere'"},
-    {0, RF_CAM "light area 0 0 0\n", "t.rf:2:7: unknown light kind 'area' (point, directional, spot)"},
+    {0, RF_CAM "light area 0 0 0\n", "t.rf:2:7: unknown light kind 'area' (point, directional, spot, rect, disc, sphere)"},
     /* a missing number: reported just after the statement's last token */
     {1, NFF_VIEW "s 0 0 0\ns 1 1 1 1\n", "t.nff:8:8: missing number: expected sphere radius"},
     {0, RF_CAM "sphere 0 0 0\n", "t.rf:2:13: missing number: expected sphere radius"},

@@ -9,7 +9,7 @@ import itertools
 import sys
 
 PARTS = ["SHADOW", "SECONDARY", "FRESNEL", "SPECULAR", "AMBIENT", "EMISSION", "SPOT", "DIRECTIONAL",
-         "FALLOFF", "JITTER"]
+         "FALLOFF", "JITTER", "AREA", "LENS", "MOTION", "GLOSSY"]
 BIT = {p: 1 << i for i, p in enumerate(PARTS)}
 ALL = (1 << len(PARTS)) - 1
 # the parts whose absence measurably saves work (instruction counts, docs/performance.md)
@@ -33,7 +33,7 @@ def main():
     for s in sets():
         lines += ["#define RF_KPARTS %d" % s, '#include "kernel_body.h"', "#undef RF_KPARTS"]
     lines.append("const RfKernel rf_kernels[] = {")
-    lines += ["    {%d, tile_%d}," % (s, s) for s in sets()]
+    lines += ["    {%d, tile_%d, adaptive_centres_%d, adaptive_refine_%d}," % (s, s, s, s) for s in sets()]
     lines += ["};", "const int rf_kernel_count = %d;" % len(sets())]
     with open("src/render/kernels_list.h", "w") as f:
         f.write("\n".join(lines) + "\n")

@@ -29,8 +29,16 @@ RfTracerOptions rf_tracer_options_default(void);
 typedef struct {
     int width, height;   /* 0: the scene's */
     int max_depth;       /* 0: the scene's; the primary ray is depth 1 */
-    int samples;         /* per pixel, 0: the scene's. 1: the pixel centre; k*k: stratified
-                            k x k jitter; otherwise uniform jitter. Box filter. */
+    int samples;         /* per pixel, 0: the scene's. 1: the pixel centre; more: placed by the
+                            sampler, weighted by the filter */
+    int sampler;         /* RfSampler, -1: the scene's (default stratified) */
+    int adaptive;        /* §3.9 adaptive supersampling: 1 on, 0 off, -1: the scene's */
+    double adaptive_threshold; /* < 0: the scene's */
+    int adaptive_depth;  /* < 0: the scene's */
+    int filter;          /* RfFilterKind, -1: the scene's (default box) */
+    double filter_radius; /* pixels; 0: the filter's default (or the scene's radius for its filter) */
+    double aperture, focus; /* §3.10 thin lens; NaN: the scene camera's */
+    int light_samples;   /* > 0: shadow rays per area light instead of each light's own */
     int threads;         /* 0: every core */
     int local_only;      /* 1: primary rays and local Phong only (no shadows, reflection,
                             refraction): the comparator's matching mode */
@@ -50,7 +58,10 @@ RfRenderOptions rf_render_options_default(void);
 typedef struct {
     uint64_t primary_rays, shadow_rays, secondary_rays;
     uint64_t invalid_samples; /* samples whose radiance was NaN or Inf: counted, replaced by 0 */
+    uint64_t adaptive_pixels; /* §3.9 adaptive supersampling: the pixels subdivided */
     int width, height, samples, max_depth, threads;
+    int sampler, adaptive;    /* what ran: RfSampler, adaptive supersampling on */
+    RfFilter filter;
     unsigned features;   /* rf_scene_features of the scene */
     double build_seconds; /* preparing the tracer: items, BVH */
     double trace_seconds; /* the rays */
@@ -66,7 +77,7 @@ typedef struct {
 unsigned rf_render_kernel(const RfScene *scene, const RfRenderOptions *opt);
 /* "general" followed by the parts left out, each after a '-' ("general-secondary-fresnel");
  * buf returned. Parts: shadow, secondary, fresnel, specular, ambient, emission, spot,
- * directional, falloff, jitter. */
+ * directional, falloff, jitter, area, lens, motion, glossy. */
 const char *rf_kernel_name(unsigned parts, char *buf, size_t size);
 /* The parts of a kernel name (rf_kernel_name's form); 0 for an unknown name or a set that no
  * compiled kernel has. */
@@ -97,6 +108,15 @@ typedef struct {
     int front;              /* 1 when the ray hit the outward / counter-clockwise side */
 } RfSurfaceHit;
 int rf_tracer_intersect(const RfTracer *tracer, RfRay ray, double t_min, double t_max, RfSurfaceHit *hit);
+/* §3.10 motion blur: the moving instances' transforms at one time, made once per sample path
+ * (one state per thread). The _at queries see moving instances where they are at the state's
+ * time; without a state (NULL, and the functions without _at) at their first keyframe. */
+typedef struct RfMotionState RfMotionState;
+RfMotionState *rf_motion_state_new(const RfTracer *tracer);
+void rf_motion_state_free(RfMotionState *ms);
+void rf_motion_state_set(RfMotionState *ms, double time);
+int rf_tracer_intersect_at(const RfTracer *tracer, RfRay ray, const RfMotionState *ms, double t_min, double t_max,
+                           RfSurfaceHit *hit);
 /* 1 when anything is hit at t in [t_min, t_max), seen from either side: a shadow ray's
  * occlusion query (it stops at the first hit). */
 int rf_tracer_occluded(const RfTracer *tracer, RfRay ray, double t_min, double t_max);
@@ -104,6 +124,8 @@ int rf_tracer_occluded(const RfTracer *tracer, RfRay ray, double t_min, double t
  * occluded the previous query (0: none; keep one per light and thread), which is tested first;
  * *last then becomes the occluder found, or 0 when nothing occludes. */
 int rf_tracer_occluded_cached(const RfTracer *tracer, RfRay ray, double t_min, double t_max, uint64_t *last);
+int rf_tracer_occluded_cached_at(const RfTracer *tracer, RfRay ray, const RfMotionState *ms, double t_min,
+                                 double t_max, uint64_t *last);
 
 /* The self-intersection policy (numeric.h RF_RAY_OFFSET_REL): the hit point p moved off the
  * surface along the unit geometric normal n to the side dir leaves by. fixed_offset > 0 moves

@@ -13,8 +13,10 @@
 #include "refray/intersect.h" /* RfSphere, RfPlane, RfCone: primitives pass straight to §3.5 */
 #include "refray/mat.h"       /* RfMat4: instance transforms (§4.8) */
 #include "refray/rgb.h"
+#include "refray/sampling.h" /* RfSampler, RfFilter */
 #include "refray/shading.h"   /* RfFalloff */
 #include "refray/status.h"
+#include "refray/transform.h" /* RfTransformStep: keyframes of motion */
 #include "refray/vec.h"
 
 #ifdef __cplusplus
@@ -41,6 +43,8 @@ typedef struct {
     double l, r, b, t;
     double fov;             /* full vertical field of view in degrees, 0 < fov < 180 */
     RfFovReading fov_reading;
+    double aperture;        /* §3.10 thin lens: aperture radius (0: pinhole) ... */
+    double focus;           /* ... and the distance of the plane in focus along the view axis */
     double hither;          /* near plane at this distance along the view axis -w: nothing
                                nearer is seen by primary rays (OpenGL's near plane) */
     RfSrcLoc loc, target_loc, up_loc;
@@ -58,9 +62,17 @@ typedef struct {
     int width, height;
     int max_depth;           /* the primary ray is depth 1; no ray deeper than this is traced */
     double min_contribution; /* a secondary ray whose weight falls below this is not traced */
-    int samples;             /* samples per pixel */
+    int samples;             /* samples per pixel (1: the pixel centre) */
     RfRgb background;        /* radiance of rays that miss everything */
     RfRgb ambient;           /* ambient light: the ambient term is ka * ambient */
+    /* §3.9/§3.10 sampling: the pattern of every sampled dimension (pixel position, lens, time,
+     * area lights, glossy rays), the reconstruction filter, adaptive supersampling */
+    RfSampler sampler;
+    RfFilter filter;
+    int adaptive;              /* 1: §3.9 adaptive supersampling instead of `samples` */
+    double adaptive_threshold; /* subdivide where neighbouring values differ by more (max channel) */
+    int adaptive_depth;        /* at most this many subdivisions (4^depth samples a pixel) */
+    double shutter_open, shutter_close; /* §3.10 the time interval of every sample path */
 } RfRenderSettings;
 
 /* ---- materials -------------------------------------------------------------------------- */
@@ -81,6 +93,9 @@ typedef struct {
     RfRgb kr, kt;       /* weights of the mirror and the refracted ray */
     double ior;         /* index of refraction inside the object (outside: 1) */
     RfRgb emission;     /* radiance emitted by the surface itself */
+    double gloss;       /* §3.10 glossy reflection and transmission: mirror and refracted rays
+                           are perturbed within the lobe cos^gloss around the ideal direction
+                           (0: ideal, no perturbation) */
     unsigned flags;     /* RF_MAT_* */
     RfSrcLoc loc;
 } RfMaterial;
@@ -95,19 +110,42 @@ RfMaterial rf_material_default(void);
 
 /* ---- lights (§3.7) ---------------------------------------------------------------------- */
 
-typedef enum { RF_LIGHT_POINT, RF_LIGHT_DIRECTIONAL, RF_LIGHT_SPOT, RF_LIGHT_KIND_COUNT } RfLightKind;
+/* Area lights (§3.10) are seen only through their light: camera and secondary rays pass them
+ * (add an emitting surface to see one). Units: a point light of intensity I gives I / d^2 at
+ * distance d; an area light has radiance Le, and an element dA of it seen under the angle
+ * theta_l from its normal acts as a point light of intensity Le cos(theta_l) dA (so a sphere
+ * light of radius r acts from afar as a point light of intensity Le pi r^2). */
+typedef enum {
+    RF_LIGHT_POINT,
+    RF_LIGHT_DIRECTIONAL,
+    RF_LIGHT_SPOT,
+    RF_LIGHT_RECT,   /* parallelogram position + a edge1 + b edge2, a, b in [0,1] */
+    RF_LIGHT_DISC,   /* disc around position with normal direction and radius */
+    RF_LIGHT_SPHERE, /* sphere around position with radius, emitting outward */
+    RF_LIGHT_KIND_COUNT
+} RfLightKind;
 
 typedef struct {
     RfLightKind kind;
     RfFalloff falloff;   /* point and spot lights; a directional light has none */
-    RfVec3 position;     /* point, spot */
+    RfVec3 position;     /* point, spot; rect: a corner; disc, sphere: the centre */
     RfVec3 direction;    /* unit; directional: the direction the light travels;
-                            spot: the axis, pointing away from the light */
-    RfRgb intensity;
+                            spot: the axis, pointing away from the light; disc: the normal of
+                            its emitting side; rect: edge1 x edge2 normalised */
+    RfRgb intensity;     /* point, spot, directional; area lights: the radiance Le */
     double spot_exponent; /* spot: intensity * cos(angle to the axis)^exponent ... */
     double spot_cutoff;   /* ... inside this half-angle in degrees, 0 outside (0 < cutoff <= 90) */
+    RfVec3 edge1, edge2;  /* rect: the sides from the corner; the front is edge1 x edge2 */
+    double radius;        /* disc, sphere */
+    int two_sided;        /* rect, disc: emits from both sides */
+    int samples;          /* area lights: shadow rays per shading point and camera sample */
     RfSrcLoc loc;
 } RfLight;
+
+/* An area light's kind (rect, disc, sphere)? */
+int rf_light_is_area(RfLightKind kind);
+/* Its area (the whole sphere for a sphere light). */
+double rf_light_area(const RfLight *l);
 
 /* ---- primitives ------------------------------------------------------------------------- */
 
@@ -162,10 +200,28 @@ typedef struct {
  * normals back with normal_to_world = ((M^-1)^T of the linear part, §4.9). */
 typedef struct {
     int object;             /* index into RfScene.objects */
-    RfMat4 to_world;        /* M: object -> world (or -> the enclosing object) */
+    RfMat4 to_world;        /* M: object -> world (or -> the enclosing object); a moving
+                               instance: M at its first keyframe */
     RfMat4 to_object;       /* M^-1 */
     RfMat3 normal_to_world; /* (M^-1)^T, linear part only */
+    int motion;             /* index into RfScene.motions; -1: it does not move */
 } RfInstance;
+
+/* §3.10 motion blur: an instance whose transform changes over the shutter. Each keyframe lists
+ * the same transform steps with other numbers; between two keyframes every number is
+ * interpolated linearly and the steps composed again (so a rotation turns, it does not shrink);
+ * before the first and after the last keyframe the transform holds. */
+#define RF_MOTION_MAX_KEYS 16
+#define RF_MOTION_MAX_STEPS 8
+typedef struct {
+    int key_count, step_count;
+    double time[RF_MOTION_MAX_KEYS]; /* increasing */
+    RfTransformStep steps[RF_MOTION_MAX_KEYS][RF_MOTION_MAX_STEPS];
+} RfMotion;
+
+/* The transform of a motion at a time (object -> world), M^-1 and (M^-1)^T;
+ * RF_ERR_SINGULAR when it cannot be inverted there. */
+RfStatus rf_motion_at(const RfMotion *m, double time, RfMat4 *to_world, RfMat4 *to_object, RfMat3 *normal);
 
 /* ---- the scene -------------------------------------------------------------------------- */
 
@@ -191,9 +247,11 @@ typedef struct {
     size_t object_count;
     RfInstance *instances;
     size_t instance_count;
+    RfMotion *motions;      /* the keyframes of moving instances */
+    size_t motion_count;
 
     /* capacities of the arrays above: private to the rf_scene_add_* functions */
-    size_t material_cap, light_cap, prim_cap, vertex_cap, normal_cap, object_cap, instance_cap;
+    size_t material_cap, light_cap, prim_cap, vertex_cap, normal_cap, object_cap, instance_cap, motion_cap;
 } RfScene;
 
 /* An empty scene with default render settings (512 x 512, depth 8, threshold 0, 1 sample,
@@ -219,6 +277,10 @@ RfStatus rf_scene_add_object(RfScene *scene, const char *name, RfSrcLoc loc, int
  * RF_ERR_SINGULAR when m (or its linear part) cannot be inverted. object may be set later
  * (forward references); rf_scene_validate checks it. */
 RfStatus rf_scene_add_instance(RfScene *scene, int object, RfMat4 m, size_t *index);
+/* Makes instance `index` move by the keyframes of m (checked: 1 <= keys, increasing times,
+ * the same steps in every keyframe, invertible at every keyframe); its to_world becomes the
+ * first keyframe's. msg says what is wrong. */
+RfStatus rf_scene_set_motion(RfScene *scene, size_t index, const RfMotion *m, char *msg, size_t msgsz);
 
 /* The graph checks (scene_graph.c): every instance names an existing object and no object
  * contains itself through instances (a cycle). On failure *loc is the instance statement to
@@ -266,10 +328,11 @@ enum {
     RF_FEAT_VERTEX_NORMALS = 1u << 6, /* some primitive interpolates vertex normals */
     RF_FEAT_LIGHT_FALLOFF = 1u << 7,  /* some light falls off with distance */
     RF_FEAT_SPOT_LIGHTS = 1u << 8,
-    RF_FEAT_AREA_LIGHTS = 1u << 9,    /* reserved: the model has no area lights yet */
-    RF_FEAT_MOTION = 1u << 10,        /* reserved: the model has no motion yet */
-    RF_FEAT_APERTURE = 1u << 11,      /* reserved: the model has no thin lens yet */
-    RF_FEAT_COUNT = 12
+    RF_FEAT_AREA_LIGHTS = 1u << 9,    /* some light is a rect, disc or sphere (§3.10) */
+    RF_FEAT_MOTION = 1u << 10,        /* some instance moves over the shutter (§3.10) */
+    RF_FEAT_APERTURE = 1u << 11,      /* the camera has a thin lens, aperture > 0 (§3.10) */
+    RF_FEAT_GLOSSY = 1u << 12,        /* some reflecting or transmitting material is glossy */
+    RF_FEAT_COUNT = 13
 };
 
 /* Only materials used by some primitive count. */

@@ -50,6 +50,25 @@ RfMat4 rf_mat4_shear_z(double dx, double dy);
 RfMat4 rf_mat4_rotate(RfAxis axis, double phi);
 RfMat4 rf_mat4_translate(RfVec3 d);
 
+/* One step of a composed transform (a scene's `translate 1 2 3`, `rotate y 30`, ...), kept as
+ * numbers so that keyframes of motion can be interpolated number by number. v holds:
+ * TRANSLATE x y z; SCALE sx sy sz; ROTATE the angle in degrees about axis (RfAxis);
+ * AXIS_ANGLE the axis x y z and the angle in degrees; EULER psi theta phi in degrees with
+ * axis = RfEulerOrder; MATRIX the 3 x 4 rows of an affine matrix. */
+typedef enum {
+    RF_STEP_TRANSLATE, RF_STEP_SCALE, RF_STEP_ROTATE, RF_STEP_AXIS_ANGLE, RF_STEP_EULER, RF_STEP_MATRIX
+} RfStepKind;
+typedef struct {
+    RfStepKind kind;
+    int axis;
+    double v[12];
+} RfTransformStep;
+
+/* The step's matrix; RF_ERR_DEGENERATE for a zero axis or scale factor. */
+RfStatus rf_transform_step_matrix(const RfTransformStep *step, RfMat4 *m);
+/* Steps composed in order, each acting after the ones before it: M = S_n ... S_2 S_1. */
+RfStatus rf_transform_steps_matrix(const RfTransformStep *steps, int n, RfMat4 *m);
+
 /* §4.5: y = M (x, 1) dehomogenised (a point), and y = M (x, 0) (a direction).
  * rf_transform_point fails with RF_ERR_DEGENERATE when the result has w = 0 (a point at
  * infinity, only possible for projective M). */

@@ -46,6 +46,10 @@ static void usage(FILE *out)
             "usage: refray render SCENE -o OUT.exr [--png OUT.png] [--width W] [--height H]\n"
             "                     [--samples N] [--depth D] [--threads N] [--local] [--seed S]\n"
             "                     [--gamma G | --srgb] [--nff-fov centres|edges] [--depth-out D.exr]\n"
+            "                     [--sampler uniform|random|stratified|sobol|adaptive]\n"
+            "                     [--adaptive-threshold T] [--adaptive-depth D]\n"
+            "                     [--filter box|gaussian|mitchell] [--filter-radius R]\n"
+            "                     [--aperture A --focus F] [--light-samples N]\n"
             "                     [--kernel auto|general|PARTS] [--quiet]\n"
             "  SCENE      an .nff, .rf or .obj scene (docs/scene-format.md)\n"
             "  -o         linear OpenEXR output (float RGB, settings in the header)\n"
@@ -53,6 +57,13 @@ static void usage(FILE *out)
             "  --local    primary rays and local Phong only (no shadows, reflection, refraction)\n"
             "  --depth-out DEPTH.exr  linear eye-space depth of the primary hit through each pixel\n"
             "             centre (distance along the view axis), +inf where the ray hits nothing\n"
+            "  --samples  per pixel (1: the pixel centre); placed by --sampler (default: the scene's,\n"
+            "             stratified) in the support of --filter (default box: the pixel square)\n"
+            "  --sampler  adaptive: §3.9 adaptive supersampling (a pixel that differs from a\n"
+            "             neighbour by more than the threshold, default 0.1, is split into 4, to\n"
+            "             the depth, default 2)\n"
+            "  --aperture --focus  §3.10 thin lens: its radius and the distance in focus\n"
+            "  --light-samples  shadow rays per area light and camera sample (default: the light's)\n"
             "  --kernel   the render kernel: auto (the one compiled for what the scene needs),\n"
             "             general (every part) or a compiled one named as refray info names\n"
             "             it (general-secondary-fresnel: without those parts); the same image\n",
@@ -148,6 +159,26 @@ int rf_cmd_render(int argc, char **argv)
             opt.seed = (uint64_t)s;
         } else if ((shared = rf_arg_shared(a, v, &lopt, &popt, &used)) != 0) {
             ok = shared > 0, i += used - 1;
+        } else if (strcmp(a, "--sampler") == 0 && v) {
+            if (strcmp(v, "adaptive") == 0)
+                opt.adaptive = 1;
+            else
+                ok = (opt.sampler = rf_sampler_parse(v)) >= 0, opt.adaptive = 0;
+            i++;
+        } else if (strcmp(a, "--adaptive-threshold") == 0 && v) {
+            ok = rf_arg_nonneg(v, &opt.adaptive_threshold), i++;
+        } else if (strcmp(a, "--adaptive-depth") == 0 && v) {
+            ok = rf_arg_int(v, 0, 8, &opt.adaptive_depth), i++;
+        } else if (strcmp(a, "--filter") == 0 && v) {
+            ok = (opt.filter = rf_filter_parse(v)) >= 0, i++;
+        } else if (strcmp(a, "--filter-radius") == 0 && v) {
+            ok = rf_arg_nonneg(v, &opt.filter_radius) && opt.filter_radius > 0.0 && opt.filter_radius <= 16.0, i++;
+        } else if (strcmp(a, "--aperture") == 0 && v) {
+            ok = rf_arg_nonneg(v, &opt.aperture), i++;
+        } else if (strcmp(a, "--focus") == 0 && v) {
+            ok = rf_arg_nonneg(v, &opt.focus) && opt.focus > 0.0, i++;
+        } else if (strcmp(a, "--light-samples") == 0 && v) {
+            ok = rf_arg_int(v, 1, 1 << 16, &opt.light_samples), i++;
         } else if (strcmp(a, "--kernel") == 0 && v) {
             ok = strcmp(v, "auto") == 0 || (opt.kernel = rf_kernel_parse(v)) != 0, i++;
         } else if (strcmp(a, "--local") == 0) {
@@ -198,6 +229,7 @@ int rf_cmd_render(int argc, char **argv)
     RfImage img;
     RfRenderStats st;
     RfStatus rs = rf_render(&scene, &opt, &img, &st);
+    int focus_missing = !isnan(opt.aperture) && opt.aperture > 0.0 && isnan(opt.focus) && !(scene.camera.focus > 0.0);
     double secs = seconds_since(prog.start);
     RfImage depth = {0, 0, 0, NULL};
     RfStatus ds = rs == RF_OK && depth_out ? primary_depth(&scene, st.width, st.height, &depth) : RF_OK;
@@ -209,7 +241,9 @@ int rf_cmd_render(int argc, char **argv)
         return 1;
     }
     if (rs != RF_OK) {
-        if (rs == RF_ERR_DOMAIN && opt.kernel)
+        if (rs == RF_ERR_DOMAIN && focus_missing)
+            fprintf(stderr, "refray render: %s: --aperture needs --focus (the scene's camera has none)\n", scene_path);
+        else if (rs == RF_ERR_DOMAIN && opt.kernel)
             fprintf(stderr, "refray render: %s: kernel '%s' lacks a part the scene needs (refray info names it)\n",
                     scene_path, rf_kernel_name(opt.kernel, (char[256]){0}, 256));
         else
@@ -220,8 +254,10 @@ int rf_cmd_render(int argc, char **argv)
     if (exr) {
         char settings[256], timing[64], threads[32], cpu[256], load_t[32], build_t[32], trace_t[32], kernel[256];
         cpu_model(cpu, sizeof cpu);
-        snprintf(settings, sizeof settings, "%dx%d, %d spp, depth %d%s, seed %llu", st.width, st.height,
-                 st.samples, st.max_depth, opt.local_only ? ", local only" : "", (unsigned long long)opt.seed);
+        snprintf(settings, sizeof settings, "%dx%d, %d spp %s, filter %s %g, depth %d%s, seed %llu", st.width,
+                 st.height, st.samples, st.adaptive ? "adaptive" : rf_sampler_name((RfSampler)st.sampler),
+                 rf_filter_name(st.filter.kind), st.filter.radius, st.max_depth,
+                 opt.local_only ? ", local only" : "", (unsigned long long)opt.seed);
         snprintf(timing, sizeof timing, "%.3f s", secs);
         snprintf(load_t, sizeof load_t, "%.3f s", load_secs);
         snprintf(build_t, sizeof build_t, "%.3f s", st.build_seconds);

@@ -2,6 +2,7 @@
 #include "refray/transform.h"
 
 #include <math.h>
+#include <stddef.h>
 
 RfMat2 rf_mat2_scale(double sx, double sy)
 {
@@ -128,6 +129,52 @@ RfMat4 rf_mat4_rotate(RfAxis axis, double phi)
 RfMat4 rf_mat4_translate(RfVec3 d)
 {
     return rf_mat4_affine(rf_mat3_identity(), d);
+}
+
+RfStatus rf_transform_step_matrix(const RfTransformStep *st, RfMat4 *m)
+{
+    const double *v = st->v, deg = RF_PI / 180.0;
+    RfMat3 rot;
+    switch (st->kind) {
+    case RF_STEP_TRANSLATE:
+        *m = rf_mat4_translate(rf_vec3(v[0], v[1], v[2]));
+        return RF_OK;
+    case RF_STEP_SCALE:
+        *m = rf_mat4_scale(v[0], v[1], v[2]);
+        return v[0] != 0.0 && v[1] != 0.0 && v[2] != 0.0 ? RF_OK : RF_ERR_DEGENERATE;
+    case RF_STEP_ROTATE:
+        *m = rf_mat4_rotate((RfAxis)st->axis, v[0] * deg);
+        return RF_OK;
+    case RF_STEP_AXIS_ANGLE: {
+        RfStatus s = rf_mat3_axis_angle(rf_vec3(v[0], v[1], v[2]), v[3] * deg, &rot, NULL, NULL);
+        *m = rf_mat4_affine(s == RF_OK ? rot : rf_mat3_identity(), rf_vec3(0, 0, 0));
+        return s;
+    }
+    case RF_STEP_EULER:
+        *m = rf_mat4_affine(rf_mat3_euler((RfEulerOrder)st->axis, v[0] * deg, v[1] * deg, v[2] * deg),
+                            rf_vec3(0, 0, 0));
+        return RF_OK;
+    case RF_STEP_MATRIX:
+        *m = rf_mat4_identity();
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 4; j++)
+                m->m[i][j] = v[4 * i + j];
+        return RF_OK;
+    }
+    return RF_ERR_DOMAIN;
+}
+
+RfStatus rf_transform_steps_matrix(const RfTransformStep *steps, int n, RfMat4 *m)
+{
+    *m = rf_mat4_identity();
+    for (int i = 0; i < n; i++) {
+        RfMat4 s;
+        RfStatus st = rf_transform_step_matrix(&steps[i], &s);
+        if (st != RF_OK)
+            return st;
+        *m = rf_mat4_mul(s, *m);
+    }
+    return RF_OK;
 }
 
 RfStatus rf_transform_point(RfMat4 m, RfVec3 x, RfVec3 *y)

@@ -11,6 +11,7 @@
 #include "refray/image.h"
 #include "refray/parallel.h"
 #include "refray/render.h"
+#include "refray/sampling.h"
 
 /* The parts of a kernel (RfRenderStats.kernel holds a set of these). */
 enum {
@@ -23,18 +24,43 @@ enum {
     RF_K_SPOT = 1u << 6,        /* spot lights */
     RF_K_DIRECTIONAL = 1u << 7, /* directional lights */
     RF_K_FALLOFF = 1u << 8,     /* lights that fall off with the squared distance */
-    RF_K_JITTER = 1u << 9,      /* more than one sample per pixel */
-    RF_K_ALL = (1u << 10) - 1,  /* the general kernel */
-    RF_K_COUNT = 10
+    RF_K_JITTER = 1u << 9,      /* more than one sample per pixel, or adaptive */
+    RF_K_AREA = 1u << 10,       /* §3.10 area lights (soft shadows) */
+    RF_K_LENS = 1u << 11,       /* §3.10 a thin lens (depth of field) */
+    RF_K_MOTION = 1u << 12,     /* §3.10 moving instances (motion blur) */
+    RF_K_GLOSSY = 1u << 13,     /* §3.10 glossy reflection and transmission */
+    RF_K_ALL = (1u << 14) - 1,  /* the general kernel */
+    RF_K_COUNT = 14
 };
+
+/* Sampled dimensions (sampling.h): the pixel position, the lens, the time, then per path vertex
+ * (depth) 64 slots: 0 the glossy mirror ray, 1 the glossy refracted ray, 2 + i light i. */
+enum { RF_DIM_PIXEL = 0, RF_DIM_LENS = 1, RF_DIM_TIME = 2 };
+static inline uint32_t rf_kernel_dim(int depth, int slot)
+{
+    return 8u + (uint32_t)(depth - 1) * 64u + (uint32_t)(slot & 63);
+}
+
+/* Where a sample path is: its pixel, camera sample k of n, the pattern, its time. */
+typedef struct {
+    uint64_t pixel;
+    uint32_t k, n;
+    RfSampler sampler;
+    double time;
+    RfMotionState *motion; /* the thread's, set to time */
+} RfPathSample;
 
 /* A light as the kernel walks it: the scene's light with its cut-off in radians. */
 typedef struct {
     RfLightKind kind;
     RfFalloff falloff;
     RfVec3 position, direction;
-    RfRgb intensity;
+    RfRgb intensity;      /* area lights: the radiance */
     double spot_exponent, spot_cutoff_rad;
+    RfVec3 edge1, edge2;  /* rect */
+    double radius, area;  /* disc, sphere; every area light */
+    int two_sided;
+    int samples;          /* area lights: shadow rays per shading point; 0: not an area light */
 } RfKernelLight;
 
 typedef struct {
@@ -51,14 +77,24 @@ typedef struct {
     double hither;                  /* near plane distance along the view axis (NFF `hither`) */
     int width, height, samples;
     uint64_t seed;
+    RfSampler sampler;              /* §3.9/§3.10 the pattern of every sampled dimension */
+    RfFilter filter;
+    int filter_box;                 /* the box of radius 1/2: the plain mean of the pixel's samples */
+    double shutter_open, shutter_close;
+    int moving;                     /* some instance moves (motion blur) */
+    int adaptive_depth;             /* §3.9 adaptive supersampling */
+    double adaptive_threshold;
+    RfRgb *centres;                 /* adaptive: the pixel centres' values (pass 1) */
     RfImage *img;
     RfRenderStats *per_thread;      /* one per thread: no sharing on the hot path */
     uint64_t *shadow_cache;         /* per thread and light: the last occluder (rf_tracer_occluded_cached) */
+    RfMotionState **motion;         /* per thread: moving instances at the sample's time (or NULL) */
 } RfKernelJob;
 
 typedef struct {
     unsigned parts;   /* RF_K_* compiled in */
     RfTileFn tile;    /* renders one tile of an RfKernelJob */
+    RfTileFn adaptive_centres, adaptive_refine; /* §3.9 adaptive supersampling's two passes */
 } RfKernel;
 
 extern const RfKernel rf_kernels[];

@@ -1,7 +1,7 @@
-/* One render kernel: the Whitted-style shading of §3.6-3.8 and the tile loop, compiled with
- * RF_KPARTS (a set of RF_K_*) fixed, so that the compiler drops every part the set leaves out.
- * kernels.c includes this file once per kernel, with RF_KPARTS and RF_KNAME defined. Not a
- * header of its own: no include guard.
+/* One render kernel: the shading of §3.6-3.8, the distributed ray tracing of §3.10 and the
+ * pixel loops of §3.9, compiled with RF_KPARTS (a set of RF_K_*) fixed, so that the compiler
+ * drops every part the set leaves out. kernels.c includes this file once per kernel, with
+ * RF_KPARTS and RF_KNAME defined. Not a header of its own: no include guard.
  *
  * Each part left out is one that could only have added nothing: a light kind that no light has,
  * a term whose coefficients are all zero, the recursion of a scene that neither reflects nor
@@ -11,13 +11,119 @@
 
 #define RF_ON(part) ((RF_KPARTS & (part)) != 0)
 
+static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, int depth, double weight,
+                             RfRenderStats *st, uint64_t *shadow_cache, const RfPathSample *ps);
+
+/* One light sample's §3.6.2 Phong term at the hit: the shadow ray to the light (§3.8, opaque
+ * shadows) and the diffuse and specular terms. 0 when the light does not reach the point. */
+static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHit *h, const RfMaterial *m,
+                                       RfVec3 n, RfVec3 v, const RfLightSample *ls, RfRenderStats *st,
+                                       uint64_t *cache, const RfPathSample *ps, RfRgb *term)
+{
+    if (rf_kernel_rgb_max(ls->i) <= 0.0)
+        return 0;
+    if (rf_vec3_dot(h->normal, ls->l) <= 0.0) /* the light is behind the surface */
+        return 0;
+    if (RF_ON(RF_K_SHADOW) && !job->local_only) {
+        RfRay sr = rf_ray(rf_ray_offset_origin(h->point, h->normal, ls->l, job->fixed_offset), ls->l);
+        double dist = isinf(ls->distance) ? HUGE_VAL
+                                          : rf_vec3_length(rf_vec3_sub(rf_vec3_add(h->point,
+                                                rf_vec3_scale(ls->l, ls->distance)), sr.origin));
+        st->shadow_rays++;
+        if (RF_ON(RF_K_MOTION) ? rf_tracer_occluded_cached_at(job->tracer, sr, ps->motion, 0.0, dist, cache)
+                               : rf_tracer_occluded_cached(job->tracer, sr, 0.0, dist, cache))
+            return 0;
+    }
+    /* §3.6.2 Phong, as rf_phong: only positive scalar products contribute */
+    double nl = rf_vec3_dot(n, ls->l);
+    double diff = nl > 0.0 ? nl : 0.0;
+    RfRgb diffuse = rf_rgb_scale(rf_rgb_mul(m->kd, ls->i), diff);
+    if (RF_ON(RF_K_SPECULAR)) {
+        /* without a highlight (ks = 0) the power would only multiply a zero */
+        double rv = job->highlight[h->material] ? rf_vec3_dot(rf_reflect(n, ls->l), v) : 0.0;
+        double spec = nl > 0.0 && rv > 0.0 ? pow(rv, m->shininess) : 0.0;
+        RfRgb specular = rf_rgb_scale(rf_rgb_mul(m->ks, ls->i), spec);
+        *term = rf_rgb_add(diffuse, specular);
+    } else {
+        *term = diffuse;
+    }
+    return 1;
+}
+
+/* §3.10 soft shadows: sample j of an area light seen from the hit (stratified over the light
+ * with the camera sample's index, rf_kernel_dim). Fills ls as a point light at the sampled point
+ * (an element dA seen under theta_l acts as intensity Le cos(theta_l) dA, scene.h), already
+ * divided by the number of samples; 0 when the sample sees the light's back or lies inside. */
+static inline int RF_KNAME(area_sample)(const RfKernelJob *job, const RfKernelLight *l, int li, RfVec3 x, int j,
+                                        int depth, const RfPathSample *ps, RfLightSample *ls)
+{
+    double uv[2];
+    rf_sample_2d(ps->sampler, ps->k * (uint32_t)l->samples + (uint32_t)j, ps->n * (uint32_t)l->samples,
+                 ps->pixel, rf_kernel_dim(depth, 2 + li), job->seed, uv);
+    if (l->kind == RF_LIGHT_SPHERE) {
+        /* uniform in the cone of directions the sphere covers (solid-angle sampling) */
+        RfVec3 to = rf_vec3_sub(l->position, x);
+        double dc = rf_vec3_length(to);
+        if (!(dc > l->radius))
+            return 0; /* inside the light */
+        double s2 = (l->radius / dc) * (l->radius / dc), cos_max = sqrt(1.0 - s2);
+        double solid = 2.0 * RF_PI * (s2 / (1.0 + cos_max)); /* 2 pi (1 - cos_max), no cancellation */
+        RfFrame f = rf_frame(rf_vec3_scale(to, 1.0 / dc));
+        RfVec3 dir = rf_frame_to_world(&f, rf_warp_cone(uv[0], uv[1], cos_max));
+        RfHit hit;
+        RfSphere sph = {l->position, l->radius};
+        if (!rf_intersect_sphere(rf_ray(x, dir), sph, RF_SPHERE_STABLE, 0.0, HUGE_VAL, &hit))
+            return 0; /* a grazing direction that rounding put just outside */
+        ls->l = dir;
+        ls->distance = hit.t;
+        ls->i = rf_rgb_scale(l->intensity, solid / l->samples);
+        return 1;
+    }
+    RfVec3 y;
+    if (l->kind == RF_LIGHT_RECT) {
+        y = rf_vec3_add(l->position, rf_vec3_add(rf_vec3_scale(l->edge1, uv[0]), rf_vec3_scale(l->edge2, uv[1])));
+    } else { /* disc: the concentric map keeps the strata compact */
+        double dx, dy;
+        rf_warp_disk(uv[0], uv[1], &dx, &dy);
+        RfFrame f = rf_frame(l->direction);
+        y = rf_vec3_add(l->position, rf_frame_to_world(&f, rf_vec3(l->radius * dx, l->radius * dy, 0.0)));
+    }
+    RfVec3 d = rf_vec3_sub(y, x);
+    double d2 = rf_vec3_dot(d, d), dist = sqrt(d2);
+    if (!(dist > 0.0))
+        return 0;
+    ls->l = rf_vec3_scale(d, 1.0 / dist);
+    double cos_l = -rf_vec3_dot(l->direction, ls->l);
+    if (l->two_sided)
+        cos_l = fabs(cos_l);
+    if (!(cos_l > 0.0))
+        return 0; /* the light's back */
+    ls->distance = dist;
+    ls->i = rf_rgb_scale(l->intensity, cos_l * l->area / (l->samples * d2));
+    return 1;
+}
+
+/* §3.10 glossy rays: the ideal direction perturbed within the lobe cos^gloss around it. 0 when
+ * the perturbed direction leaves by the wrong side (then the ray carries nothing). */
+static inline int RF_KNAME(glossy)(const RfKernelJob *job, RfVec3 *dir, double gloss, RfVec3 normal, int out_side,
+                                   int slot, int depth, const RfPathSample *ps)
+{
+    double uv[2];
+    rf_sample_2d(ps->sampler, ps->k, ps->n, ps->pixel, rf_kernel_dim(depth, slot), job->seed, uv);
+    RfFrame f = rf_frame(*dir);
+    *dir = rf_frame_to_world(&f, rf_warp_cos_power(uv[0], uv[1], gloss));
+    double side = rf_vec3_dot(*dir, normal);
+    return out_side ? side > 0.0 : side < 0.0;
+}
+
 /* The colour seen along ray (hits in [t_min, inf)); depth 1 is the primary ray, weight the
  * product of the reflection/transmission weights on the way here. */
 static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, int depth, double weight,
-                             RfRenderStats *st, uint64_t *shadow_cache)
+                             RfRenderStats *st, uint64_t *shadow_cache, const RfPathSample *ps)
 {
     RfSurfaceHit h;
-    if (rf_tracer_intersect(job->tracer, ray, t_min, HUGE_VAL, &h) < 0)
+    if ((RF_ON(RF_K_MOTION) ? rf_tracer_intersect_at(job->tracer, ray, ps->motion, t_min, HUGE_VAL, &h)
+                            : rf_tracer_intersect(job->tracer, ray, t_min, HUGE_VAL, &h)) < 0)
         return job->background;
     const RfMaterial *m = &job->materials[h.material];
     RfVec3 v = rf_vec3_neg(rf_vec3_normalize(ray.dir));
@@ -33,6 +139,14 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
     for (int li = 0; li < job->light_count; li++) {
         const RfKernelLight *l = &job->lights[li];
         RfLightSample ls;
+        RfRgb term;
+        if (RF_ON(RF_K_AREA) && l->samples > 0) { /* an area light: its samples */
+            for (int j = 0; j < l->samples; j++)
+                if (RF_KNAME(area_sample)(job, l, li, h.point, j, depth, ps, &ls) &&
+                    RF_KNAME(light_term)(job, &h, m, n, v, &ls, st, &shadow_cache[li], ps, &term))
+                    color = rf_rgb_add(color, term);
+            continue;
+        }
         if (RF_ON(RF_K_DIRECTIONAL) && l->kind == RF_LIGHT_DIRECTIONAL) {
             ls = rf_light_directional(l->intensity, l->direction);
         } else if (RF_ON(RF_K_SPOT) && l->kind == RF_LIGHT_SPOT) {
@@ -50,33 +164,8 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
                        ? rf_rgb_scale(l->intensity, 1.0 / (d * d))
                        : l->intensity;
         }
-        if (rf_kernel_rgb_max(ls.i) <= 0.0)
-            continue;
-        if (rf_vec3_dot(h.normal, ls.l) <= 0.0) /* the light is behind the surface */
-            continue;
-        if (RF_ON(RF_K_SHADOW) && !job->local_only) {
-            /* §3.8 shadow ray to the light: any surface in between blocks it (opaque shadows) */
-            RfRay sr = rf_ray(rf_ray_offset_origin(h.point, h.normal, ls.l, job->fixed_offset), ls.l);
-            double dist = isinf(ls.distance) ? HUGE_VAL
-                                             : rf_vec3_length(rf_vec3_sub(rf_vec3_add(h.point,
-                                                   rf_vec3_scale(ls.l, ls.distance)), sr.origin));
-            st->shadow_rays++;
-            if (rf_tracer_occluded_cached(job->tracer, sr, 0.0, dist, &shadow_cache[li]))
-                continue;
-        }
-        /* §3.6.2 Phong, as rf_phong: only positive scalar products contribute */
-        double nl = rf_vec3_dot(n, ls.l);
-        double diff = nl > 0.0 ? nl : 0.0;
-        RfRgb diffuse = rf_rgb_scale(rf_rgb_mul(m->kd, ls.i), diff);
-        if (RF_ON(RF_K_SPECULAR)) {
-            /* without a highlight (ks = 0) the power would only multiply a zero */
-            double rv = job->highlight[h.material] ? rf_vec3_dot(rf_reflect(n, ls.l), v) : 0.0;
-            double spec = nl > 0.0 && rv > 0.0 ? pow(rv, m->shininess) : 0.0;
-            RfRgb specular = rf_rgb_scale(rf_rgb_mul(m->ks, ls.i), spec);
-            color = rf_rgb_add(color, rf_rgb_add(diffuse, specular));
-        } else {
-            color = rf_rgb_add(color, diffuse);
-        }
+        if (RF_KNAME(light_term)(job, &h, m, n, v, &ls, st, &shadow_cache[li], ps, &term))
+            color = rf_rgb_add(color, term);
     }
     if (!RF_ON(RF_K_SECONDARY) || job->local_only || depth >= job->max_depth)
         return color;
@@ -104,57 +193,187 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
         wt = zero;
     }
     double mr = rf_kernel_rgb_max(wr), mt = rf_kernel_rgb_max(wt);
+    int glossy = RF_ON(RF_K_GLOSSY) && m->gloss > 0.0;
     if (mr > 0.0 && weight * mr >= job->min_contribution) {
         RfVec3 rdir = rf_reflect_dir(rf_vec3_neg(v), n);
-        RfRay rr = rf_ray(rf_ray_offset_origin(h.point, h.normal, rdir, job->fixed_offset), rdir);
-        st->secondary_rays++;
-        color = rf_rgb_add(color, rf_rgb_mul(wr, RF_KNAME(trace)(job, rr, 0.0, depth + 1, weight * mr, st, shadow_cache)));
+        if (!glossy || RF_KNAME(glossy)(job, &rdir, m->gloss, h.normal, 1, 0, depth, ps)) {
+            RfRay rr = rf_ray(rf_ray_offset_origin(h.point, h.normal, rdir, job->fixed_offset), rdir);
+            st->secondary_rays++;
+            color = rf_rgb_add(color, rf_rgb_mul(wr, RF_KNAME(trace)(job, rr, 0.0, depth + 1, weight * mr, st,
+                                                                     shadow_cache, ps)));
+        }
     }
     if (refracts && mt > 0.0 && weight * mt >= job->min_contribution) {
-        RfRay tr = rf_ray(rf_ray_offset_origin(h.point, h.normal, tdir, job->fixed_offset), tdir);
-        st->secondary_rays++;
-        color = rf_rgb_add(color, rf_rgb_mul(wt, RF_KNAME(trace)(job, tr, 0.0, depth + 1, weight * mt, st, shadow_cache)));
+        if (!glossy || RF_KNAME(glossy)(job, &tdir, m->gloss, h.normal, 0, 1, depth, ps)) {
+            RfRay tr = rf_ray(rf_ray_offset_origin(h.point, h.normal, tdir, job->fixed_offset), tdir);
+            st->secondary_rays++;
+            color = rf_rgb_add(color, rf_rgb_mul(wt, RF_KNAME(trace)(job, tr, 0.0, depth + 1, weight * mt, st,
+                                                                     shadow_cache, ps)));
+        }
     }
     return color;
 }
 
-/* One tile: for each pixel its samples (the centre, or jittered positions, rf_kernel_sample),
- * the primary ray through each (from the hither plane on), the box-filtered mean. */
+/* The primary ray's colour: the hither plane, the trace, the invalid-sample rule. */
+static RfRgb RF_KNAME(camera_ray)(const RfKernelJob *job, RfRay ray, const RfPathSample *ps, RfRenderStats *st,
+                                  uint64_t *shadow_cache)
+{
+    const RfCamera *cam = &job->camera;
+    /* the hither plane: nothing nearer than `hither` along the view axis -w */
+    double t_min = job->hither > 0.0 ? job->hither / -rf_vec3_dot(ray.dir, cam->basis.w) : 0.0;
+    st->primary_rays++;
+    RfRgb c = RF_KNAME(trace)(job, ray, t_min, 1, 1.0, st, shadow_cache, ps);
+    if (!isfinite(c.r) || !isfinite(c.g) || !isfinite(c.b)) {
+        /* never let NaN/Inf reach the film: count it (reported), store black */
+        st->invalid_samples++;
+        c = rf_rgb(0, 0, 0);
+    }
+    return c;
+}
+
+/* One camera sample: the ray through image position (px, py) (pixel units, y down), through the
+ * lens and at the time of sample k of n (§3.10), from the hither plane on. NaN and Inf are
+ * counted and become black. */
+static RfRgb RF_KNAME(camera_sample)(const RfKernelJob *job, double px, double py, RfPathSample *ps,
+                                     RfRenderStats *st, uint64_t *shadow_cache)
+{
+    const RfCamera *cam = &job->camera;
+    double lens[2] = {0.0, 0.0};
+    if (RF_ON(RF_K_LENS) && cam->aperture_radius > 0.0) {
+        double uv[2];
+        rf_sample_2d(ps->sampler, ps->k, ps->n, ps->pixel, RF_DIM_LENS, job->seed, uv);
+        rf_warp_disk(uv[0], uv[1], &lens[0], &lens[1]);
+    }
+    if (RF_ON(RF_K_MOTION) && ps->motion) {
+        ps->time = job->shutter_open + (job->shutter_close - job->shutter_open) *
+                                           rf_sample_1d(ps->sampler, ps->k, ps->n, ps->pixel, RF_DIM_TIME, job->seed);
+        rf_motion_state_set(ps->motion, ps->time);
+    }
+    RfRay ray = rf_camera_ray(cam, px, py, lens[0], lens[1]);
+    return RF_KNAME(camera_ray)(job, ray, ps, st, shadow_cache);
+}
+
+
+/* The value of a pixel from its samples (§3.9): the box filter's mean, or a filter's weighted
+ * mean over samples drawn in [-radius, radius]^2 around the centre. One sample: the centre. */
 static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
 {
     const RfKernelJob *job = ctx;
     RfRenderStats *st = &job->per_thread[thread];
     uint64_t *shadow_cache = job->shadow_cache + (size_t)thread * (size_t)job->light_count;
     const RfCamera *cam = &job->camera;
+    int n = RF_ON(RF_K_JITTER) ? job->samples : 1;
+    for (int y = tile.y0; y < tile.y1; y++)
+        for (int x = tile.x0; x < tile.x1; x++) {
+            RfPathSample ps = {(uint64_t)y * (uint64_t)job->width + (uint64_t)x, 0, (uint32_t)n, job->sampler,
+                               job->shutter_open, job->motion ? job->motion[thread] : NULL};
+            RfRgb sum = rf_rgb(0, 0, 0);
+            if (n == 1) {
+                if (RF_ON(RF_K_LENS | RF_K_MOTION) && (cam->aperture_radius > 0.0 || job->moving)) {
+                    sum = RF_KNAME(camera_sample)(job, x + 0.5, y + 0.5, &ps, st, shadow_cache);
+                } else { /* the pixel centre: rf_camera_ray's plane point, computed per row and column */
+                    RfVec3 c = rf_vec3(job->column_x[x], job->row_y[y], -cam->d);
+                    RfRay ray = rf_ray(cam->eye, rf_vec3_normalize(rf_camera_to_world(cam, c)));
+                    sum = RF_KNAME(camera_ray)(job, ray, &ps, st, shadow_cache);
+                }
+            } else {
+                RfRgb wsum_c = rf_rgb(0, 0, 0);
+                double wsum = 0.0;
+                for (int k = 0; k < n; k++) {
+                    double s[2];
+                    ps.k = (uint32_t)k;
+                    rf_sample_2d(job->sampler, (uint32_t)k, (uint32_t)n, ps.pixel, RF_DIM_PIXEL, job->seed, s);
+                    if (job->filter_box) {
+                        sum = rf_rgb_add(sum, RF_KNAME(camera_sample)(job, x + s[0], y + s[1], &ps, st, shadow_cache));
+                    } else {
+                        double r = job->filter.radius, ox = (2.0 * s[0] - 1.0) * r, oy = (2.0 * s[1] - 1.0) * r;
+                        double w = rf_filter_eval(&job->filter, ox, oy);
+                        RfRgb c = RF_KNAME(camera_sample)(job, x + 0.5 + ox, y + 0.5 + oy, &ps, st, shadow_cache);
+                        sum = rf_rgb_add(sum, c);
+                        wsum_c = rf_rgb_add(wsum_c, rf_rgb_scale(c, w));
+                        wsum += w;
+                    }
+                }
+                /* a filter with negative lobes may leave a weight sum <= 0: then the plain mean */
+                if (!job->filter_box && wsum > 0.0)
+                    sum = rf_rgb_scale(wsum_c, (double)n / wsum);
+            }
+            float *px = job->img->data + (size_t)ps.pixel * 3;
+            px[0] = (float)(sum.r / n);
+            px[1] = (float)(sum.g / n);
+            px[2] = (float)(sum.b / n);
+        }
+    return 0;
+}
+
+/* §3.9 adaptive supersampling, pass 1: one sample at each pixel centre. */
+static int RF_KNAME(adaptive_centres)(void *ctx, RfTile tile, int thread)
+{
+    const RfKernelJob *job = ctx;
+    RfRenderStats *st = &job->per_thread[thread];
+    uint64_t *shadow_cache = job->shadow_cache + (size_t)thread * (size_t)job->light_count;
+    for (int y = tile.y0; y < tile.y1; y++)
+        for (int x = tile.x0; x < tile.x1; x++) {
+            RfPathSample ps = {(uint64_t)y * (uint64_t)job->width + (uint64_t)x, 0, 1, RF_SAMPLER_RANDOM,
+                               job->shutter_open, job->motion ? job->motion[thread] : NULL};
+            RfRgb c = RF_KNAME(camera_sample)(job, x + 0.5, y + 0.5, &ps, st, shadow_cache);
+            job->centres[ps.pixel] = c;
+        }
+    return 0;
+}
+
+/* The mean of the four quadrant centres of the square (x0, y0, size), each quadrant split again
+ * (to job->adaptive_depth levels) where its value differs from its parent's by more than the
+ * threshold. */
+static RfRgb RF_KNAME(adaptive_square)(const RfKernelJob *job, double x0, double y0, double size, int level,
+                                       RfRgb parent, RfPathSample *ps, RfRenderStats *st, uint64_t *shadow_cache)
+{
+    RfRgb q[4], sum = rf_rgb(0, 0, 0);
+    double h = 0.5 * size;
+    for (int i = 0; i < 4; i++) {
+        ps->k++;
+        q[i] = RF_KNAME(camera_sample)(job, x0 + (i & 1) * h + 0.5 * h, y0 + (i >> 1) * h + 0.5 * h, ps, st,
+                                       shadow_cache);
+    }
+    for (int i = 0; i < 4; i++) {
+        if (level < job->adaptive_depth && rf_kernel_rgb_diff(q[i], parent) > job->adaptive_threshold)
+            q[i] = RF_KNAME(adaptive_square)(job, x0 + (i & 1) * h, y0 + (i >> 1) * h, h, level + 1, q[i], ps, st,
+                                             shadow_cache);
+        sum = rf_rgb_add(sum, q[i]);
+    }
+    return rf_rgb_scale(sum, 0.25);
+}
+
+/* Pass 2: a pixel whose centre differs from a 4-neighbour's by more than the threshold (the
+ * script: "wenn die Differenz der Farbe zum Nachbarpixel zu groß ist") is subdivided. */
+static int RF_KNAME(adaptive_refine)(void *ctx, RfTile tile, int thread)
+{
+    const RfKernelJob *job = ctx;
+    RfRenderStats *st = &job->per_thread[thread];
+    uint64_t *shadow_cache = job->shadow_cache + (size_t)thread * (size_t)job->light_count;
     for (int y = tile.y0; y < tile.y1; y++)
         for (int x = tile.x0; x < tile.x1; x++) {
             uint64_t pixel = (uint64_t)y * (uint64_t)job->width + (uint64_t)x;
-            RfRgb sum = rf_rgb(0, 0, 0);
-            for (int k = 0; k < (RF_ON(RF_K_JITTER) ? job->samples : 1); k++) {
-                RfRay ray;
-                if (RF_ON(RF_K_JITTER) && job->samples > 1) {
-                    double sx, sy;
-                    rf_kernel_sample(job->samples, k, pixel, job->seed, &sx, &sy);
-                    ray = rf_camera_ray(cam, x + sx, y + sy, 0.0, 0.0);
-                } else { /* the pixel centre: rf_camera_ray's plane point, computed per row and column */
-                    RfVec3 c = rf_vec3(job->column_x[x], job->row_y[y], -cam->d);
-                    ray = rf_ray(cam->eye, rf_vec3_normalize(rf_camera_to_world(cam, c)));
-                }
-                /* the hither plane: nothing nearer than `hither` along the view axis -w */
-                double t_min = job->hither > 0.0 ? job->hither / -rf_vec3_dot(ray.dir, cam->basis.w) : 0.0;
-                st->primary_rays++;
-                RfRgb c = RF_KNAME(trace)(job, ray, t_min, 1, 1.0, st, shadow_cache);
-                if (!isfinite(c.r) || !isfinite(c.g) || !isfinite(c.b)) {
-                    /* never let NaN/Inf reach the film: count it (reported), store black */
-                    st->invalid_samples++;
-                    c = rf_rgb(0, 0, 0);
-                }
-                sum = rf_rgb_add(sum, c);
+            RfRgb c = job->centres[pixel];
+            double contrast = 0.0;
+            if (x > 0)
+                contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[pixel - 1]));
+            if (x + 1 < job->width)
+                contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[pixel + 1]));
+            if (y > 0)
+                contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[pixel - (uint64_t)job->width]));
+            if (y + 1 < job->height)
+                contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[pixel + (uint64_t)job->width]));
+            if (job->adaptive_depth > 0 && contrast > job->adaptive_threshold) {
+                RfPathSample ps = {pixel, 0, 1, RF_SAMPLER_RANDOM, job->shutter_open,
+                                   job->motion ? job->motion[thread] : NULL};
+                c = RF_KNAME(adaptive_square)(job, x, y, 1.0, 1, c, &ps, st, shadow_cache);
+                st->adaptive_pixels++;
             }
             float *px = job->img->data + (size_t)pixel * 3;
-            px[0] = (float)(sum.r / job->samples);
-            px[1] = (float)(sum.g / job->samples);
-            px[2] = (float)(sum.b / job->samples);
+            px[0] = (float)c.r;
+            px[1] = (float)c.g;
+            px[2] = (float)c.b;
         }
     return 0;
 }

@@ -6,7 +6,8 @@
 #include <math.h>
 
 #include "refray/optics.h"
-#include "refray/rng.h"
+#include "refray/intersect.h"
+#include "refray/sampling.h"
 #include "refray/shading.h"
 
 /* max over the channels, as fmax(r, fmax(g, b)) (NaN ignored) without a library call. */
@@ -20,19 +21,13 @@ static inline double rf_kernel_rgb_max(RfRgb c)
     return m;
 }
 
-/* The sub-pixel position of sample k of n > 1: stratified jitter on a k x k grid when n is a
- * perfect square, otherwise uniform jitter (counter-based random numbers: rng.h). */
-static void rf_kernel_sample(int n, int k, uint64_t pixel, uint64_t seed, double *sx, double *sy)
+/* The largest channel difference |a - b| (NaN counts as a difference). */
+static inline double rf_kernel_rgb_diff(RfRgb a, RfRgb b)
 {
-    double u = rf_rng_uniform(pixel, (uint32_t)k, 0, seed), v = rf_rng_uniform(pixel, (uint32_t)k, 1, seed);
-    int side = (int)floor(sqrt((double)n) + 0.5);
-    if (side * side == n) {
-        *sx = ((k % side) + u) / side;
-        *sy = ((k / side) + v) / side;
-    } else {
-        *sx = u;
-        *sy = v;
-    }
+    double d[3] = {fabs(a.r - b.r), fabs(a.g - b.g), fabs(a.b - b.b)}, m = 0.0;
+    for (int i = 0; i < 3; i++)
+        m = d[i] > m || d[i] != d[i] ? d[i] : m;
+    return m;
 }
 
 #define RF_CAT_(a, b) a##_##b

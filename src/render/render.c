@@ -15,24 +15,65 @@ RfRenderOptions rf_render_options_default(void)
     RfRenderOptions o;
     memset(&o, 0, sizeof o);
     o.seed = 1;
+    o.sampler = -1;
+    o.adaptive = -1;
+    o.adaptive_threshold = -1.0;
+    o.adaptive_depth = -1;
+    o.filter = -1;
+    o.aperture = NAN;
+    o.focus = NAN;
     return o;
 }
 
 /* ---- which kernel ---- */
 
 static const char *const part_names[RF_K_COUNT] = {"shadow", "secondary", "fresnel", "specular", "ambient",
-                                                   "emission", "spot", "directional", "falloff", "jitter"};
+                                                   "emission", "spot", "directional", "falloff", "jitter",
+                                                   "area", "lens", "motion", "glossy"};
+
+/* The scene's settings with the options' overrides. */
+typedef struct {
+    int samples, max_depth;
+    RfSampler sampler;
+    int adaptive, adaptive_depth;
+    double adaptive_threshold;
+    RfFilter filter;
+    double aperture, focus;
+} Resolved;
+
+static int resolve(const RfScene *scene, const RfRenderOptions *opt, Resolved *r)
+{
+    const RfRenderSettings *rs = &scene->render;
+    r->samples = opt->samples > 0 ? opt->samples : (rs->samples > 0 ? rs->samples : 1);
+    r->max_depth = opt->max_depth > 0 ? opt->max_depth : rs->max_depth;
+    r->sampler = opt->sampler >= 0 ? (RfSampler)opt->sampler : rs->sampler;
+    r->adaptive = opt->adaptive >= 0 ? opt->adaptive : rs->adaptive;
+    r->adaptive_threshold = opt->adaptive_threshold >= 0.0 ? opt->adaptive_threshold : rs->adaptive_threshold;
+    r->adaptive_depth = opt->adaptive_depth >= 0 ? opt->adaptive_depth : rs->adaptive_depth;
+    r->filter = rs->filter;
+    if (opt->filter >= 0 && opt->filter != (int)rs->filter.kind)
+        r->filter = rf_filter_default((RfFilterKind)opt->filter);
+    if (opt->filter_radius > 0.0)
+        r->filter.radius = opt->filter_radius;
+    r->aperture = isnan(opt->aperture) ? scene->camera.aperture : opt->aperture;
+    r->focus = isnan(opt->focus) ? scene->camera.focus : opt->focus;
+    return r->max_depth > 0 && (unsigned)r->sampler < RF_SAMPLER_COUNT && (unsigned)r->filter.kind < RF_FILTER_COUNT &&
+           r->filter.radius > 0.0 && r->adaptive_depth <= 8 && r->aperture >= 0.0 && isfinite(r->aperture) &&
+           (r->aperture == 0.0 || (r->focus > 0.0 && isfinite(r->focus)));
+}
 
 /* The parts a render of this scene with these options needs (kernel.h). */
-static unsigned needed_parts(const RfScene *scene, const RfRenderOptions *opt, int samples, int max_depth)
+static unsigned needed_parts(const RfScene *scene, const RfRenderOptions *opt, const Resolved *r)
 {
     unsigned f = rf_scene_features(scene), k = 0;
     if (!opt->local_only && scene->light_count > 0)
         k |= RF_K_SHADOW;
-    if (!opt->local_only && max_depth > 1 && (f & (RF_FEAT_REFLECTION | RF_FEAT_TRANSMISSION))) {
+    if (!opt->local_only && r->max_depth > 1 && (f & (RF_FEAT_REFLECTION | RF_FEAT_TRANSMISSION))) {
         k |= RF_K_SECONDARY;
         if (f & RF_FEAT_FRESNEL)
             k |= RF_K_FRESNEL;
+        if (f & RF_FEAT_GLOSSY)
+            k |= RF_K_GLOSSY;
     }
     if (f & RF_FEAT_SPECULAR)
         k |= RF_K_SPECULAR;
@@ -42,13 +83,19 @@ static unsigned needed_parts(const RfScene *scene, const RfRenderOptions *opt, i
         k |= RF_K_EMISSION;
     if (f & RF_FEAT_LIGHT_FALLOFF)
         k |= RF_K_FALLOFF;
+    if (f & RF_FEAT_AREA_LIGHTS)
+        k |= RF_K_AREA;
+    if (f & RF_FEAT_MOTION)
+        k |= RF_K_MOTION;
+    if (r->aperture > 0.0)
+        k |= RF_K_LENS;
     for (size_t i = 0; i < scene->light_count; i++) {
         if (scene->lights[i].kind == RF_LIGHT_SPOT)
             k |= RF_K_SPOT;
         if (scene->lights[i].kind == RF_LIGHT_DIRECTIONAL)
             k |= RF_K_DIRECTIONAL;
     }
-    if (samples > 1)
+    if (r->samples > 1 || r->adaptive)
         k |= RF_K_JITTER;
     return k;
 }
@@ -82,18 +129,11 @@ int rf_kernel_count_compiled(void) { return rf_kernel_count; }
 
 unsigned rf_kernel_compiled(int i) { return i >= 0 && i < rf_kernel_count ? rf_kernels[i].parts : 0; }
 
-static int render_size(const RfScene *scene, const RfRenderOptions *opt, int *samples, int *max_depth)
-{
-    *samples = opt->samples > 0 ? opt->samples : (scene->render.samples > 0 ? scene->render.samples : 1);
-    *max_depth = opt->max_depth > 0 ? opt->max_depth : scene->render.max_depth;
-    return *max_depth > 0;
-}
-
 unsigned rf_render_kernel(const RfScene *scene, const RfRenderOptions *opt)
 {
-    int samples, max_depth;
-    render_size(scene, opt, &samples, &max_depth);
-    const RfKernel *k = choose_kernel(needed_parts(scene, opt, samples, max_depth), opt->kernel);
+    Resolved r;
+    resolve(scene, opt, &r);
+    const RfKernel *k = choose_kernel(needed_parts(scene, opt, &r), opt->kernel);
     return k ? k->parts : 0;
 }
 
@@ -168,11 +208,23 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     memset(&run, 0, sizeof run);
     memset(stats, 0, sizeof *stats);
     run.opt = opt;
+    Resolved res;
     job->width = opt->width > 0 ? opt->width : scene->render.width;
     job->height = opt->height > 0 ? opt->height : scene->render.height;
-    if (!render_size(scene, opt, &job->samples, &job->max_depth) || job->width <= 0 || job->height <= 0 ||
-        !scene->has_camera)
+    if (!resolve(scene, opt, &res) || job->width <= 0 || job->height <= 0 || !scene->has_camera ||
+        opt->light_samples < 0 || opt->light_samples > 1 << 16)
         return RF_ERR_DOMAIN;
+    job->samples = res.samples;
+    job->max_depth = res.max_depth;
+    job->sampler = res.sampler;
+    job->filter = res.filter;
+    /* the box of radius 1/2 places samples in the pixel square and takes their mean */
+    job->filter_box = res.filter.kind == RF_FILTER_BOX && res.filter.radius == 0.5;
+    job->adaptive_depth = res.adaptive_depth;
+    job->adaptive_threshold = res.adaptive_threshold;
+    job->shutter_open = scene->render.shutter_open;
+    job->shutter_close = scene->render.shutter_close;
+    job->moving = (rf_scene_features(scene) & RF_FEAT_MOTION) != 0;
     job->local_only = opt->local_only;
     job->fixed_offset = opt->fixed_offset;
     job->seed = opt->seed;
@@ -183,14 +235,16 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     const RfSceneCamera *sc = &scene->camera;
     RfWindow w = rf_scene_camera_window(sc, job->width, job->height);
     st = rf_camera_init(&job->camera, sc->eye, sc->target, sc->up, w.d, w.l, w.r, w.b, w.t, job->width, job->height);
+    if (st == RF_OK && res.aperture > 0.0)
+        st = rf_camera_set_lens(&job->camera, res.aperture, res.focus);
     if (st != RF_OK)
         return st;
     job->hither = sc->hither;
-    unsigned needed = needed_parts(scene, opt, job->samples, job->max_depth);
+    unsigned needed = needed_parts(scene, opt, &res);
     const RfKernel *kernel = choose_kernel(needed, opt->kernel);
     if (!kernel) /* a kernel asked for that lacks a part the scene needs */
         return RF_ERR_DOMAIN;
-    run.tile = kernel->tile;
+    run.tile = res.adaptive ? kernel->adaptive_centres : kernel->tile;
     int threads = opt->threads > 0 ? opt->threads : rf_cpu_count();
     job->per_thread = calloc((size_t)threads, sizeof *job->per_thread);
     RfKernelLight *lights = malloc(sizeof *lights * (scene->light_count + 1));
@@ -198,7 +252,10 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     double *row_y = malloc(sizeof *row_y * (size_t)job->height);
     job->shadow_cache = calloc((size_t)threads * (scene->light_count + 1), sizeof *job->shadow_cache);
     unsigned char *highlight = malloc(scene->material_count + 1);
-    if (!job->per_thread || !lights || !column_x || !row_y || !job->shadow_cache || !highlight) {
+    job->centres = res.adaptive ? malloc(sizeof *job->centres * (size_t)job->width * (size_t)job->height) : NULL;
+    if (!job->per_thread || !lights || !column_x || !row_y || !job->shadow_cache || !highlight ||
+        (res.adaptive && !job->centres)) {
+        free(job->centres);
         free(highlight);
         free(job->shadow_cache);
         free(job->per_thread);
@@ -216,6 +273,12 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
         lights[i].intensity = l->intensity;
         lights[i].spot_exponent = l->spot_exponent;
         lights[i].spot_cutoff_rad = l->spot_cutoff * (RF_PI / 180.0);
+        lights[i].edge1 = l->edge1;
+        lights[i].edge2 = l->edge2;
+        lights[i].radius = l->radius;
+        lights[i].area = rf_light_area(l);
+        lights[i].two_sided = l->two_sided;
+        lights[i].samples = !rf_light_is_area(l->kind) ? 0 : opt->light_samples > 0 ? opt->light_samples : l->samples;
     }
     for (size_t i = 0; i < scene->material_count; i++)
         highlight[i] = (unsigned char)rf_material_has_highlight(&scene->materials[i]);
@@ -240,12 +303,24 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     clock_gettime(CLOCK_MONOTONIC, &t1);
     if (st == RF_OK)
         st = rf_image_alloc(img, job->width, job->height, 3);
+    if (st == RF_OK && job->moving) { /* §3.10 one motion state per thread */
+        job->motion = calloc((size_t)threads, sizeof *job->motion);
+        for (int i = 0; job->motion && i < threads && st == RF_OK; i++)
+            st = (job->motion[i] = rf_motion_state_new(tracer)) ? RF_OK : RF_ERR_NOMEM;
+        if (!job->motion)
+            st = RF_ERR_NOMEM;
+    }
     if (st == RF_OK) {
         stats->accel_bytes = rf_tracer_bytes(tracer);
         job->tracer = tracer;
         job->img = img;
         st = rf_parallel_tiles(job->width, job->height, 16, threads, run_tile, opt->progress ? run_progress : NULL,
                                &run);
+        if (st == RF_OK && res.adaptive) { /* §3.9 pass 2: every centre is known */
+            run.tile = kernel->adaptive_refine;
+            st = rf_parallel_tiles(job->width, job->height, 16, threads, run_tile,
+                                   opt->progress ? run_progress : NULL, &run);
+        }
     }
     clock_gettime(CLOCK_MONOTONIC, &t2);
     stats->build_seconds = seconds_between(t0, t1);
@@ -257,7 +332,11 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
         stats->shadow_rays += job->per_thread[i].shadow_rays;
         stats->secondary_rays += job->per_thread[i].secondary_rays;
         stats->invalid_samples += job->per_thread[i].invalid_samples;
+        stats->adaptive_pixels += job->per_thread[i].adaptive_pixels;
     }
+    stats->sampler = (int)res.sampler;
+    stats->adaptive = res.adaptive;
+    stats->filter = res.filter;
     stats->width = job->width;
     stats->height = job->height;
     stats->samples = job->samples;
@@ -271,8 +350,12 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     stats->idle_share = stats->trace_seconds > 0.0 ? 1.0 - busy / (used * stats->trace_seconds) : 0.0;
     if (stats->idle_share < 0.0)
         stats->idle_share = 0.0;
+    for (int i = 0; job->motion && i < threads; i++)
+        rf_motion_state_free(job->motion[i]);
+    free(job->motion);
     free(job->per_thread);
     free(job->shadow_cache);
+    free(job->centres);
     free(highlight);
     free(lights);
     free(column_x);

@@ -133,6 +133,7 @@ void rf_tracer_free(RfTracer *t)
 }
 
 static RfStatus build_object(RfTracer *t, int o);
+static RfAabb transformed_box(RfAabb ob, RfMat4 m, int *ok);
 
 /* An instance's box: the 8 corners of its object's box taken to world space, padded by a few
  * ulps so that the rounding of the corners never culls a ray (§4.8). Returns 0 for an object
@@ -145,20 +146,9 @@ static int instance_box(const RfTracer *t, const RfPrimitive *p, RfAabb *b)
         return 0;
     if (lv->bvh_count == 0)
         return -1;
-    RfAabb ob = lv->box;
-    *b = rf_aabb_empty();
-    for (int c = 0; c < 8; c++) {
-        RfVec3 k = rf_vec3(c & 1 ? ob.hi.x : ob.lo.x, c & 2 ? ob.hi.y : ob.lo.y, c & 4 ? ob.hi.z : ob.lo.z);
-        if (rf_transform_point(in->to_world, k, &k) != RF_OK)
-            return 0;
-        *b = rf_aabb_add_point(*b, k);
-    }
-    double m = fmax(fmax(fmax(fabs(b->lo.x), fabs(b->hi.x)), fmax(fabs(b->lo.y), fabs(b->hi.y))),
-                    fmax(fabs(b->lo.z), fabs(b->hi.z)));
-    RfVec3 pad = rf_vec3(16.0 * DBL_EPSILON * m, 16.0 * DBL_EPSILON * m, 16.0 * DBL_EPSILON * m);
-    b->lo = rf_vec3_sub(b->lo, pad);
-    b->hi = rf_vec3_add(b->hi, pad);
-    return 1;
+    int ok;
+    *b = transformed_box(lv->box, in->to_world, &ok);
+    return ok;
 }
 
 typedef struct {
@@ -243,7 +233,8 @@ static RfStatus build_level(RfTracer *t, size_t first, size_t end, int world, Le
         int key = lv->item_count;
         if (p->type == RF_PRIM_INSTANCE) {
             RfAabb b;
-            int bounded = instance_box(t, p, &b);
+            /* a moving instance is tested for every ray: its box depends on the time */
+            int bounded = scene->instances[p->u.instance].motion >= 0 ? 0 : instance_box(t, p, &b);
             if (bounded < 0) /* an empty object: nothing to hit */
                 continue;
             lv->items[lv->item_count++] = it;
@@ -392,7 +383,111 @@ typedef struct {
     int instanced;      /* the hit is inside an instance: nmat takes its normals to this space */
     RfMat3 nmat;
     uint64_t occluder;  /* shadow: the key of the world item found */
+    const RfMotionState *motion; /* §3.10 moving instances at the ray's time; NULL: their first keyframe */
 } Query;
+
+/* The moving instances' matrices at one time (RfScene.motions order): one set per path, made
+ * once per camera sample instead of once per ray and instance. */
+typedef struct {
+    int ok;      /* 0: singular at this time (the instance is not hit) */
+    int bounded; /* box holds the instance at this time */
+    RfAabb box;
+    RfMat4 to_object;
+    RfMat3 normal_to_world;
+} MotionFrame;
+
+struct RfMotionState {
+    const RfTracer *tracer;
+    double time;
+    MotionFrame *frames;
+};
+
+/* The world box of an object's box under m: its 8 corners, padded by a few ulps so that the
+ * corners' rounding never culls a ray (as instance_box). */
+static RfAabb transformed_box(RfAabb ob, RfMat4 m, int *ok)
+{
+    RfAabb b = rf_aabb_empty();
+    *ok = 1;
+    for (int c = 0; c < 8; c++) {
+        RfVec3 k = rf_vec3(c & 1 ? ob.hi.x : ob.lo.x, c & 2 ? ob.hi.y : ob.lo.y, c & 4 ? ob.hi.z : ob.lo.z);
+        if (rf_transform_point(m, k, &k) != RF_OK)
+            *ok = 0;
+        b = rf_aabb_add_point(b, k);
+    }
+    double mx = fmax(fmax(fmax(fabs(b.lo.x), fabs(b.hi.x)), fmax(fabs(b.lo.y), fabs(b.hi.y))),
+                     fmax(fabs(b.lo.z), fabs(b.hi.z)));
+    RfVec3 pad = rf_vec3(16.0 * DBL_EPSILON * mx, 16.0 * DBL_EPSILON * mx, 16.0 * DBL_EPSILON * mx);
+    b.lo = rf_vec3_sub(b.lo, pad);
+    b.hi = rf_vec3_add(b.hi, pad);
+    return b;
+}
+
+/* Can the ray meet the (padded) box within [t_min, t_max]? Slab distances in double, the
+ * comparison with a relative slack far above their rounding; NaN never culls. */
+static int box_may_hit(RfAabb b, RfRay r, double t_min, double t_max)
+{
+    const double o[3] = {r.origin.x, r.origin.y, r.origin.z}, d[3] = {r.dir.x, r.dir.y, r.dir.z};
+    const double lo[3] = {b.lo.x, b.lo.y, b.lo.z}, hi[3] = {b.hi.x, b.hi.y, b.hi.z};
+    double t0 = t_min, t1 = t_max;
+    for (int a = 0; a < 3; a++) {
+        if (d[a] == 0.0) {
+            if (o[a] < lo[a] || o[a] > hi[a])
+                return 0;
+            continue;
+        }
+        double inv = 1.0 / d[a], ta = (lo[a] - o[a]) * inv, tb = (hi[a] - o[a]) * inv;
+        if (ta > tb) {
+            double x = ta;
+            ta = tb;
+            tb = x;
+        }
+        t0 = ta > t0 ? ta : t0;
+        t1 = tb < t1 ? tb : t1;
+    }
+    return !(t0 > t1 + 1e-9 * (fabs(t0) + fabs(t1)));
+}
+
+RfMotionState *rf_motion_state_new(const RfTracer *t)
+{
+    RfMotionState *ms = calloc(1, sizeof *ms);
+    if (!ms)
+        return NULL;
+    ms->tracer = t;
+    ms->time = NAN;
+    ms->frames = calloc(t->scene->motion_count ? t->scene->motion_count : 1, sizeof *ms->frames);
+    if (!ms->frames) {
+        free(ms);
+        return NULL;
+    }
+    return ms;
+}
+
+void rf_motion_state_free(RfMotionState *ms)
+{
+    if (ms)
+        free(ms->frames);
+    free(ms);
+}
+
+void rf_motion_state_set(RfMotionState *ms, double time)
+{
+    if (time == ms->time)
+        return;
+    ms->time = time;
+    const RfScene *s = ms->tracer->scene;
+    for (size_t i = 0; i < s->instance_count; i++) {
+        const RfInstance *in = &s->instances[i];
+        if (in->motion < 0)
+            continue;
+        RfMat4 to_world;
+        MotionFrame *f = &ms->frames[in->motion];
+        f->ok = rf_motion_at(&s->motions[in->motion], time, &to_world, &f->to_object, &f->normal_to_world) == RF_OK;
+        const Level *lv = in->object >= 0 ? &ms->tracer->objects[in->object] : NULL;
+        f->bounded = 0;
+        if (f->ok && lv && lv->unbounded_count == 0 && lv->bvh_count > 0)
+            f->box = transformed_box(lv->box, to_world, &f->bounded);
+    }
+}
 
 static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, double *t_lim, uint64_t *key_lim);
 
@@ -402,14 +497,24 @@ static int hit_instance(Query *q, const RfPrimitive *p, RfRay ray, double t_min,
 {
     const RfTracer *tr = q->tracer;
     const RfInstance *in = &tr->scene->instances[p->u.instance];
+    RfMat4 to_object = in->to_object;
+    RfMat3 normal_to_world = in->normal_to_world;
     RfRay r;
-    if (rf_transform_point(in->to_object, ray.origin, &r.origin) != RF_OK)
+    if (in->motion >= 0 && q->motion) { /* §3.10: where the instance is at the ray's time */
+        const MotionFrame *f = &q->motion->frames[in->motion];
+        if (!f->ok || (f->bounded && !box_may_hit(f->box, ray, t_min, t_max)))
+            return 0;
+        to_object = f->to_object;
+        normal_to_world = f->normal_to_world;
+    }
+    if (rf_transform_point(to_object, ray.origin, &r.origin) != RF_OK)
         return 0;
-    r.dir = rf_transform_direction(in->to_object, ray.dir);
+    r.dir = rf_transform_direction(to_object, ray.dir);
     Query sub;
     sub.tracer = tr;
     sub.shadow = q->shadow;
     sub.instanced = 0;
+    sub.motion = q->motion;
     double tm = t_max;
     uint64_t key = 0;
     if (!trace_level(&tr->objects[in->object], &sub, r, t_min, &tm, &key))
@@ -417,11 +522,11 @@ static int hit_instance(Query *q, const RfPrimitive *p, RfRay ray, double t_min,
     if (q->shadow)
         return *t = tm, 1;
     q->hit = sub.hit;
-    q->hit.normal = rf_vec3_normalize(rf_mat3_mul_vec(in->normal_to_world, sub.hit.normal));
+    q->hit.normal = rf_vec3_normalize(rf_mat3_mul_vec(normal_to_world, sub.hit.normal));
     q->item = sub.item;
     q->material = sub.material;
     q->smooth = sub.smooth;
-    q->nmat = sub.instanced ? rf_mat3_mul(in->normal_to_world, sub.nmat) : in->normal_to_world;
+    q->nmat = sub.instanced ? rf_mat3_mul(normal_to_world, sub.nmat) : normal_to_world;
     q->instanced = 1;
     *t = tm;
     return 1;
@@ -590,15 +695,23 @@ int rf_tracer_occluded(const RfTracer *t, RfRay ray, double t_min, double t_max)
 {
     Query q;
     q.shadow = 1;
+    q.motion = NULL;
     return trace_query(t, &q, ray, t_min, t_max);
 }
 
 int rf_tracer_occluded_cached(const RfTracer *t, RfRay ray, double t_min, double t_max, uint64_t *last)
 {
+    return rf_tracer_occluded_cached_at(t, ray, NULL, t_min, t_max, last);
+}
+
+int rf_tracer_occluded_cached_at(const RfTracer *t, RfRay ray, const RfMotionState *ms, double t_min, double t_max,
+                                 uint64_t *last)
+{
     Query q;
     q.tracer = t;
     q.shadow = 1;
     q.instanced = 0;
+    q.motion = ms;
     if (*last) { /* the occluder of the last query first: neighbouring shadow rays share it */
         double tt;
         if (hit_item(&q, key_item(*last), ray, NULL, t_min, t_max, &tt))
@@ -614,8 +727,15 @@ int rf_tracer_occluded_cached(const RfTracer *t, RfRay ray, double t_min, double
 
 int rf_tracer_intersect(const RfTracer *t, RfRay ray, double t_min, double t_max, RfSurfaceHit *out)
 {
+    return rf_tracer_intersect_at(t, ray, NULL, t_min, t_max, out);
+}
+
+int rf_tracer_intersect_at(const RfTracer *t, RfRay ray, const RfMotionState *ms, double t_min, double t_max,
+                           RfSurfaceHit *out)
+{
     Query q;
     q.shadow = 0;
+    q.motion = ms;
     if (!trace_query(t, &q, ray, t_min, t_max))
         return -1;
     const RfScene *s = t->scene;

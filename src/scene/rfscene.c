@@ -128,6 +128,11 @@ static RfStatus read_camera(RfReader *r, const RfToken *kw)
                 st = rf_lex_check(lx, c->d > 0.0, "d must be > 0, found %g", c->d);
         } else if (rf_lex_is(&a, "hither")) {
             st = rf_lex_number_ge(lx, "hither", 0.0, &c->hither);
+        } else if (rf_lex_is(&a, "aperture")) { /* §3.10 thin lens: its radius */
+            st = rf_lex_number_ge(lx, "aperture radius", 0.0, &c->aperture);
+        } else if (rf_lex_is(&a, "focus")) {
+            if (!(st = rf_lex_number(lx, "focus distance", &c->focus)))
+                st = rf_lex_check(lx, c->focus > 0.0, "focus distance must be > 0, found %g", c->focus);
         } else {
             return bad_attr(lx, kw, &a);
         }
@@ -137,6 +142,8 @@ static RfStatus read_camera(RfReader *r, const RfToken *kw)
     const char *missing = !have_eye ? "eye" : !have_target ? "target" : !have_up ? "up" : NULL;
     if (missing)
         return rf_lex_error(lx, kw->line, kw->col, "camera needs '%s'", missing);
+    if (c->aperture > 0.0 && !(c->focus > 0.0))
+        return rf_lex_error(lx, kw->line, kw->col, "camera with an aperture needs 'focus'");
     if (have_fov == c->has_window)
         return rf_lex_error(lx, kw->line, kw->col, "camera needs exactly one of 'fov' and 'window'");
     r->scene->has_camera = 1;
@@ -208,6 +215,8 @@ static RfStatus read_material(RfReader *r, const RfToken *kw)
             st = read_colour(lx, "emission", &m.emission);
         else if (rf_lex_is(&a, "shininess"))
             st = rf_lex_number_ge(lx, "shininess", 0.0, &m.shininess);
+        else if (rf_lex_is(&a, "glossy"))
+            st = rf_lex_number_ge(lx, "glossy exponent", 0.0, &m.gloss);
         else if (rf_lex_is(&a, "ior")) {
             if (!(st = rf_lex_number(lx, "ior", &m.ior)))
                 st = rf_lex_check(lx, m.ior > 0.0, "ior must be > 0, found %g", m.ior);
@@ -233,14 +242,57 @@ static RfStatus read_light(RfReader *r, const RfToken *kw)
     RfLight l;
     RfToken kind, a;
     char q[96];
-    RfStatus st = rf_lex_word(lx, "a light kind (point, directional, spot)", &kind);
+    RfStatus st = rf_lex_word(lx, "a light kind (point, directional, spot, rect, disc, sphere)", &kind);
     if (st)
         return st;
     memset(&l, 0, sizeof l);
     l.loc = loc_of(kw);
     l.intensity = rf_rgb(1, 1, 1);
     l.falloff = RF_FALLOFF_INVERSE_SQUARE;
+    l.samples = 1;
     int have_axis = 0, have_cutoff = 0;
+    if (rf_lex_is(&kind, "rect") || rf_lex_is(&kind, "disc") || rf_lex_is(&kind, "sphere")) {
+        /* §3.10 area lights: geometry, then radiance, sides and shadow samples */
+        l.falloff = RF_FALLOFF_NONE; /* the 1/d^2 is in the geometry term */
+        st = rf_lex_vec3(lx, kind.s[0] == 'r' ? "rect corner" : "light centre", &l.position);
+        if (kind.s[0] == 'r') {
+            l.kind = RF_LIGHT_RECT;
+            if (!st && !(st = rf_lex_vec3(lx, "rect edge 1", &l.edge1)))
+                st = rf_lex_vec3(lx, "rect edge 2", &l.edge2);
+            if (!st)
+                st = rf_lex_check(lx, rf_vec3_length(rf_vec3_cross(l.edge1, l.edge2)) > 0.0,
+                                  "rect light: its edges are parallel or zero (no area)");
+            if (!st)
+                l.direction = rf_vec3_normalize(rf_vec3_cross(l.edge1, l.edge2));
+        } else if (kind.s[0] == 'd') {
+            l.kind = RF_LIGHT_DISC;
+            if (!st && !(st = rf_lex_vec3(lx, "disc normal", &l.direction)))
+                st = rf_lex_check(lx, rf_vec3_length(l.direction) > 0.0, "disc normal has zero length");
+            if (!st && !(st = rf_lex_number(lx, "disc radius", &l.radius)))
+                st = rf_lex_check(lx, l.radius > 0.0, "disc radius must be > 0, found %g", l.radius);
+            if (!st)
+                l.direction = rf_vec3_normalize(l.direction);
+        } else {
+            l.kind = RF_LIGHT_SPHERE;
+            if (!st && !(st = rf_lex_number(lx, "sphere radius", &l.radius)))
+                st = rf_lex_check(lx, l.radius > 0.0, "sphere light radius must be > 0, found %g", l.radius);
+        }
+        while (!st && next_attr(lx, &a)) {
+            if (rf_lex_is(&a, "radiance"))
+                st = read_colour(lx, "radiance", &l.intensity);
+            else if (rf_lex_is(&a, "two-sided") && l.kind != RF_LIGHT_SPHERE)
+                l.two_sided = 1;
+            else if (rf_lex_is(&a, "samples"))
+                st = rf_lex_int(lx, "light samples", 1, 1 << 16, &l.samples);
+            else
+                return bad_attr(lx, &kind, &a);
+        }
+        if (st)
+            return st;
+        if (rf_scene_add_light(r->scene, &l))
+            return rf_lex_error(lx, kw->line, kw->col, "out of memory");
+        return RF_OK;
+    }
     if (rf_lex_is(&kind, "point") || rf_lex_is(&kind, "spot")) {
         l.kind = kind.s[0] == 'p' ? RF_LIGHT_POINT : RF_LIGHT_SPOT;
         st = rf_lex_vec3(lx, "light position", &l.position);
@@ -252,7 +304,7 @@ static RfStatus read_light(RfReader *r, const RfToken *kw)
                               "light direction has zero length");
     } else {
         return rf_lex_error(lx, kind.line, kind.col,
-                            "unknown light kind %s (point, directional, spot)",
+                            "unknown light kind %s (point, directional, spot, rect, disc, sphere)",
                             rf_lex_quote(&kind, q, sizeof q));
     }
     while (!st && next_attr(lx, &a)) {
@@ -443,52 +495,53 @@ static RfStatus read_end(RfReader *r, const RfToken *kw)
     return no_attrs(&r->lx, kw);
 }
 
-/* One transform of an instance, composed after the ones before it (they act first):
- * M = step * M. Angles in degrees. *known = 0 when a is not a transform keyword. */
-static RfStatus read_transform(RfReader *r, const RfToken *a, RfMat4 *m, int *known)
+/* One transform step of an instance (angles in degrees). *known = 0 when a is not a transform
+ * keyword. */
+static RfStatus read_transform(RfReader *r, const RfToken *a, RfTransformStep *step, int *known)
 {
     RfLexer *lx = &r->lx;
     RfStatus st = RF_OK;
-    RfMat4 step = rf_mat4_identity();
-    RfMat3 rot;
-    RfVec3 v;
-    double deg;
     char q[96];
+    double *v = step->v;
     *known = 1;
+    memset(step, 0, sizeof *step);
     if (rf_lex_is(a, "translate")) {
-        if (!(st = rf_lex_vec3(lx, "translation", &v)))
-            step = rf_mat4_translate(v);
+        step->kind = RF_STEP_TRANSLATE;
+        st = rf_lex_number(lx, "translation", &v[0]);
+        if (!st && !(st = rf_lex_number(lx, "translation", &v[1])))
+            st = rf_lex_number(lx, "translation", &v[2]);
     } else if (rf_lex_is(a, "scale")) {
-        if (!(st = rf_lex_number(lx, "scale factor", &v.x))) {
-            v.y = v.z = v.x;
+        step->kind = RF_STEP_SCALE;
+        if (!(st = rf_lex_number(lx, "scale factor", &v[0]))) {
+            v[1] = v[2] = v[0];
             if (lx->tok.kind == RF_TOK_NUMBER && !rf_lex_at_statement_start(lx) &&
-                !(st = rf_lex_number(lx, "scale factor", &v.y)))
-                st = rf_lex_number(lx, "scale factor", &v.z);
+                !(st = rf_lex_number(lx, "scale factor", &v[1])))
+                st = rf_lex_number(lx, "scale factor", &v[2]);
         }
-        if (!st && !(v.x != 0.0 && v.y != 0.0 && v.z != 0.0))
+        if (!st && !(v[0] != 0.0 && v[1] != 0.0 && v[2] != 0.0))
             st = rf_lex_error(lx, a->line, a->col, "scale factors must be non-zero");
-        step = rf_mat4_scale(v.x, v.y, v.z);
     } else if (rf_lex_is(a, "rotate")) {
         RfToken ax;
+        step->kind = RF_STEP_ROTATE;
         if ((st = rf_lex_word(lx, "an axis (x, y, z)", &ax)))
             return st;
         if (!rf_lex_is(&ax, "x") && !rf_lex_is(&ax, "y") && !rf_lex_is(&ax, "z"))
             return rf_lex_error(lx, ax.line, ax.col, "rotate needs an axis x, y or z, found %s",
                                 rf_lex_quote(&ax, q, sizeof q));
-        if (!(st = rf_lex_number(lx, "rotation angle", &deg)))
-            step = rf_mat4_rotate((RfAxis)(ax.s[0] - 'x'), deg * (RF_PI / 180.0));
+        step->axis = ax.s[0] - 'x';
+        st = rf_lex_number(lx, "rotation angle", &v[0]);
     } else if (rf_lex_is(a, "axis-angle")) {
-        if (!(st = rf_lex_vec3(lx, "rotation axis", &v)) &&
-            !(st = rf_lex_number(lx, "rotation angle", &deg))) {
-            if (rf_mat3_axis_angle(v, deg * (RF_PI / 180.0), &rot, NULL, NULL) != RF_OK)
-                return rf_lex_error(lx, a->line, a->col, "axis-angle: the axis has zero length");
-            step = rf_mat4_affine(rot, rf_vec3(0, 0, 0));
-        }
+        step->kind = RF_STEP_AXIS_ANGLE;
+        for (int k = 0; !st && k < 3; k++)
+            st = rf_lex_number(lx, "rotation axis", &v[k]);
+        if (!st && !(st = rf_lex_number(lx, "rotation angle", &v[3])) &&
+            !(rf_vec3_length(rf_vec3(v[0], v[1], v[2])) > 0.0))
+            return rf_lex_error(lx, a->line, a->col, "axis-angle: the axis has zero length");
     } else if (rf_lex_is(a, "euler")) {
         static const char *const orders[] = {"zyx", "xyz", "zxz", "zyz"};
         RfToken o;
-        double psi, theta, phi;
         int k = -1;
+        step->kind = RF_STEP_EULER;
         if ((st = rf_lex_word(lx, "an Euler order (zyx, xyz, zxz, zyz)", &o)))
             return st;
         for (int i = 0; i < 4; i++)
@@ -497,22 +550,17 @@ static RfStatus read_transform(RfReader *r, const RfToken *a, RfMat4 *m, int *kn
         if (k < 0)
             return rf_lex_error(lx, o.line, o.col, "unknown Euler order %s (zyx, xyz, zxz, zyz)",
                                 rf_lex_quote(&o, q, sizeof q));
-        if (!(st = rf_lex_number(lx, "Euler angle psi", &psi)) &&
-            !(st = rf_lex_number(lx, "Euler angle theta", &theta)) &&
-            !(st = rf_lex_number(lx, "Euler angle phi", &phi)))
-            step = rf_mat4_affine(rf_mat3_euler((RfEulerOrder)k, psi * (RF_PI / 180.0),
-                                                theta * (RF_PI / 180.0), phi * (RF_PI / 180.0)),
-                                  rf_vec3(0, 0, 0));
+        step->axis = k;
+        if (!(st = rf_lex_number(lx, "Euler angle psi", &v[0])) &&
+            !(st = rf_lex_number(lx, "Euler angle theta", &v[1])))
+            st = rf_lex_number(lx, "Euler angle phi", &v[2]);
     } else if (rf_lex_is(a, "matrix")) {
-        for (int i = 0; !st && i < 3; i++)
-            for (int j = 0; !st && j < 4; j++)
-                st = rf_lex_number(lx, "matrix entry (3 rows of 4)", &step.m[i][j]);
+        step->kind = RF_STEP_MATRIX;
+        for (int k = 0; !st && k < 12; k++)
+            st = rf_lex_number(lx, "matrix entry (3 rows of 4)", &v[k]);
     } else {
         *known = 0;
-        return RF_OK;
     }
-    if (!st)
-        *m = rf_mat4_mul(step, *m);
     return st;
 }
 
@@ -524,25 +572,89 @@ static RfStatus read_instance(RfReader *r, const RfToken *kw)
     RfToken name, a;
     RfMat4 m = rf_mat4_identity();
     RfPrimitive p;
+    /* keyframes: the steps before the first `at TIME` are the transform (at time 0 when `at`
+     * follows); each `at TIME` starts a keyframe with the same steps, other numbers */
+    RfMotion *mo = calloc(1, sizeof *mo);
+    int nsteps[RF_MOTION_MAX_KEYS] = {0}, timed0 = 0;
+    RfToken key_tok[RF_MOTION_MAX_KEYS];
+    char msg[256];
+    if (!mo)
+        return rf_lex_error(lx, kw->line, kw->col, "out of memory");
+    mo->key_count = 1;
+    key_tok[0] = *kw;
     RfStatus st = rf_lex_word(lx, "an object name", &name);
     while (!st && next_attr(lx, &a)) {
-        int known;
-        st = read_transform(r, &a, &m, &known);
-        if (!known)
+        int known, k = mo->key_count - 1;
+        if (rf_lex_is(&a, "at") && k == 0 && nsteps[0] == 0 && !timed0) { /* the first keyframe's time */
+            st = rf_lex_number(lx, "keyframe time", &mo->time[0]);
+            timed0 = 1;
+            key_tok[0] = a;
+            continue;
+        }
+        if (rf_lex_is(&a, "at")) {
+            if (k + 1 >= RF_MOTION_MAX_KEYS) {
+                st = rf_lex_error(lx, a.line, a.col, "more than %d keyframes", RF_MOTION_MAX_KEYS - 1);
+            } else if (!(st = rf_lex_number(lx, "keyframe time", &mo->time[k + 1]))) {
+                if ((k > 0 || timed0) && !(mo->time[k + 1] > mo->time[k]))
+                    st = rf_lex_error(lx, a.line, a.col, "keyframe times must increase");
+                key_tok[k + 1] = a;
+                mo->key_count++;
+            }
+            continue;
+        }
+        RfTransformStep step;
+        st = read_transform(r, &a, &step, &known);
+        if (!known) {
+            free(mo);
             return bad_attr(lx, kw, &a);
+        }
+        if (!st && nsteps[k] >= RF_MOTION_MAX_STEPS)
+            st = rf_lex_error(lx, a.line, a.col, "more than %d transform steps", RF_MOTION_MAX_STEPS);
+        if (!st)
+            mo->steps[k][nsteps[k]++] = step;
+    }
+    if (!st && mo->key_count > 1 && !timed0 && !(mo->time[1] > 0.0)) /* the first keyframe: time 0 */
+        st = rf_lex_error(lx, key_tok[1].line, key_tok[1].col,
+                          "keyframe times must increase (the first keyframe is at time 0)");
+    mo->step_count = nsteps[0];
+    for (int k = 1; !st && k < mo->key_count; k++) {
+        int same = nsteps[k] == nsteps[0];
+        for (int i = 0; same && i < nsteps[0]; i++)
+            same = mo->steps[k][i].kind == mo->steps[0][i].kind && mo->steps[k][i].axis == mo->steps[0][i].axis;
+        if (!same)
+            st = rf_lex_error(lx, key_tok[k].line, key_tok[k].col,
+                              "keyframe at %g lists other transform steps than the first: each keyframe "
+                              "lists the same steps (kinds, axes, order) with other numbers",
+                              mo->time[k]);
     }
     if (!st)
+        st = rf_transform_steps_matrix(mo->steps[0], mo->step_count, &m) == RF_OK
+                 ? RF_OK
+                 : rf_lex_error(lx, kw->line, kw->col, "instance transform is degenerate");
+    if (!st)
         st = rf__reader_default_material(lx, r->scene, kw, &r->material);
-    if (st)
+    if (st) {
+        free(mo);
         return st;
+    }
     memset(&p, 0, sizeof p);
     p.type = RF_PRIM_INSTANCE;
     p.flags = RF_PRIM_TWO_SIDED | (r->object >= 0 ? RF_PRIM_IN_OBJECT : 0u);
     p.material = r->material; /* unused: the object's primitives have their own */
     p.loc = loc_of(kw);
     st = rf_scene_add_instance(r->scene, -1, m, &p.u.instance);
-    if (st == RF_ERR_SINGULAR)
+    if (st == RF_ERR_SINGULAR) {
+        free(mo);
         return rf_lex_error(lx, kw->line, kw->col, "instance transform is singular (a zero scale?)");
+    }
+    if (!st && mo->key_count > 1) {
+        st = rf_scene_set_motion(r->scene, p.u.instance, mo, msg, sizeof msg);
+        if (st && st != RF_ERR_NOMEM) {
+            free(mo);
+            return rf_lex_error(lx, kw->line, kw->col, "%s", msg);
+        }
+    }
+    free(mo);
     if (!st && r->ref_count == r->ref_cap) {
         size_t cap = r->ref_cap ? 2 * r->ref_cap : 16;
         PendingRef *refs = realloc(r->refs, cap * sizeof *refs);
@@ -624,6 +736,69 @@ static RfStatus read_mesh(RfReader *r, const RfToken *kw)
     return st;
 }
 
+/* sampler uniform|random|stratified|sobol, or sampler adaptive [threshold T] [depth D] (§3.9) */
+static RfStatus read_sampler(RfReader *r, const RfToken *kw)
+{
+    RfLexer *lx = &r->lx;
+    RfRenderSettings *rs = &r->scene->render;
+    RfToken w, a;
+    char q[96], name[32];
+    RfStatus st = rf_lex_word(lx, "a sampler (uniform, random, stratified, sobol, adaptive)", &w);
+    if (st)
+        return st;
+    snprintf(name, sizeof name, "%.*s", (int)(w.len < 31 ? w.len : 31), w.s);
+    if (rf_lex_is(&w, "adaptive")) {
+        rs->adaptive = 1;
+        while (!st && next_attr(lx, &a)) {
+            if (rf_lex_is(&a, "threshold"))
+                st = rf_lex_number_ge(lx, "adaptive threshold", 0.0, &rs->adaptive_threshold);
+            else if (rf_lex_is(&a, "depth"))
+                st = rf_lex_int(lx, "adaptive depth", 0, 8, &rs->adaptive_depth);
+            else
+                return bad_attr(lx, &w, &a);
+        }
+        return st;
+    }
+    int s = rf_sampler_parse(name);
+    if (s < 0)
+        return rf_lex_error(lx, w.line, w.col, "unknown sampler %s (uniform, random, stratified, sobol, adaptive)",
+                            rf_lex_quote(&w, q, sizeof q));
+    rs->sampler = (RfSampler)s;
+    rs->adaptive = 0;
+    return no_attrs(lx, kw);
+}
+
+/* filter box|gaussian|mitchell [radius R] [sigma S] (§3.9 reconstruction) */
+static RfStatus read_filter(RfReader *r)
+{
+    RfLexer *lx = &r->lx;
+    RfRenderSettings *rs = &r->scene->render;
+    RfToken w, a;
+    char q[96], name[32];
+    RfStatus st = rf_lex_word(lx, "a filter (box, gaussian, mitchell)", &w);
+    if (st)
+        return st;
+    snprintf(name, sizeof name, "%.*s", (int)(w.len < 31 ? w.len : 31), w.s);
+    int k = rf_filter_parse(name);
+    if (k < 0)
+        return rf_lex_error(lx, w.line, w.col, "unknown filter %s (box, gaussian, mitchell)",
+                            rf_lex_quote(&w, q, sizeof q));
+    rs->filter = rf_filter_default((RfFilterKind)k);
+    while (!st && next_attr(lx, &a)) {
+        if (rf_lex_is(&a, "radius")) {
+            if (!(st = rf_lex_number(lx, "filter radius", &rs->filter.radius)))
+                st = rf_lex_check(lx, rs->filter.radius > 0.0 && rs->filter.radius <= 16.0,
+                                  "filter radius must be in (0, 16] pixels, found %g", rs->filter.radius);
+        } else if (rf_lex_is(&a, "sigma") && k == RF_FILTER_GAUSSIAN) {
+            if (!(st = rf_lex_number(lx, "filter sigma", &rs->filter.sigma)))
+                st = rf_lex_check(lx, rs->filter.sigma > 0.0, "filter sigma must be > 0, found %g", rs->filter.sigma);
+        } else {
+            return bad_attr(lx, &w, &a);
+        }
+    }
+    return st;
+}
+
 static RfStatus read_statement(RfReader *r, const RfToken *kw)
 {
     RfLexer *lx = &r->lx;
@@ -659,7 +834,15 @@ static RfStatus read_statement(RfReader *r, const RfToken *kw)
             st = rf_lex_check(lx, rs->min_contribution <= 1.0, "threshold must be in [0, 1]");
     } else if (rf_lex_is(kw, "samples"))
         st = rf_lex_int(lx, "samples", 1, 1 << 20, &rs->samples);
-    else if (rf_lex_is(kw, "background"))
+    else if (rf_lex_is(kw, "sampler"))
+        return read_sampler(r, kw);
+    else if (rf_lex_is(kw, "filter"))
+        return read_filter(r);
+    else if (rf_lex_is(kw, "shutter")) {
+        if (!(st = rf_lex_number(lx, "shutter open", &rs->shutter_open)) &&
+            !(st = rf_lex_number(lx, "shutter close", &rs->shutter_close)))
+            st = rf_lex_check(lx, rs->shutter_open <= rs->shutter_close, "shutter needs open <= close");
+    } else if (rf_lex_is(kw, "background"))
         st = read_colour(lx, "background", &rs->background);
     else if (rf_lex_is(kw, "ambient"))
         st = read_colour(lx, "ambient", &rs->ambient);

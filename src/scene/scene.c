@@ -40,6 +40,12 @@ void rf_scene_init(RfScene *scene)
     scene->render.max_depth = 8;
     scene->render.min_contribution = 0.0;
     scene->render.samples = 1;
+    scene->render.sampler = RF_SAMPLER_STRATIFIED;
+    scene->render.filter = rf_filter_default(RF_FILTER_BOX);
+    scene->render.adaptive_threshold = 0.1;
+    scene->render.adaptive_depth = 2;
+    scene->render.shutter_open = 0.0;
+    scene->render.shutter_close = 1.0;
     scene->camera.d = 1.0;
     scene->camera.fov = 45.0;
     scene->camera.up = rf_vec3(0, 1, 0);
@@ -55,6 +61,7 @@ void rf_scene_free(RfScene *scene)
     free(scene->normals);
     free(scene->objects);
     free(scene->instances);
+    free(scene->motions);
     rf_scene_init(scene);
 }
 
@@ -164,6 +171,7 @@ RfStatus rf_scene_add_instance(RfScene *scene, int object, RfMat4 m, size_t *ind
     if (rf_mat4_inverse(m, &in.to_object) || rf_mat3_inverse(rf_mat4_linear(m), &lin_inv))
         return RF_ERR_SINGULAR;
     in.normal_to_world = rf_mat3_transpose(lin_inv); /* §4.9 n' = (M^-1)^T n */
+    in.motion = -1;
     RfStatus st = reserve((void **)&scene->instances, &scene->instance_cap, scene->instance_count,
                           1, sizeof in);
     if (st)
@@ -171,6 +179,86 @@ RfStatus rf_scene_add_instance(RfScene *scene, int object, RfMat4 m, size_t *ind
     scene->instances[scene->instance_count] = in;
     *index = scene->instance_count++;
     return RF_OK;
+}
+
+/* The matrices at one time: M, M^-1, (M^-1)^T of the linear part. */
+static RfStatus instance_matrices(RfMat4 m, RfMat4 *to_world, RfMat4 *to_object, RfMat3 *normal)
+{
+    RfMat3 lin_inv;
+    *to_world = m;
+    if (rf_mat4_inverse(m, to_object) || rf_mat3_inverse(rf_mat4_linear(m), &lin_inv))
+        return RF_ERR_SINGULAR;
+    *normal = rf_mat3_transpose(lin_inv);
+    return RF_OK;
+}
+
+RfStatus rf_motion_at(const RfMotion *mo, double time, RfMat4 *to_world, RfMat4 *to_object, RfMat3 *normal)
+{
+    RfTransformStep steps[RF_MOTION_MAX_STEPS];
+    int k = 0;
+    while (k + 1 < mo->key_count && !(time < mo->time[k + 1]))
+        k++;
+    /* between keyframes k and k+1 (or holding the first or the last one) */
+    double s = k + 1 < mo->key_count && time > mo->time[k]
+                   ? (time - mo->time[k]) / (mo->time[k + 1] - mo->time[k])
+                   : 0.0;
+    for (int i = 0; i < mo->step_count; i++) {
+        steps[i] = mo->steps[k][i];
+        if (s > 0.0)
+            for (int j = 0; j < 12; j++)
+                steps[i].v[j] = (1.0 - s) * mo->steps[k][i].v[j] + s * mo->steps[k + 1][i].v[j];
+    }
+    RfMat4 m;
+    RfStatus st = rf_transform_steps_matrix(steps, mo->step_count, &m);
+    return st != RF_OK ? RF_ERR_SINGULAR : instance_matrices(m, to_world, to_object, normal);
+}
+
+RfStatus rf_scene_set_motion(RfScene *scene, size_t index, const RfMotion *mo, char *msg, size_t msgsz)
+{
+    RfMat4 w, o;
+    RfMat3 n;
+    if (mo->key_count < 1 || mo->key_count > RF_MOTION_MAX_KEYS || mo->step_count < 0 ||
+        mo->step_count > RF_MOTION_MAX_STEPS)
+        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "motion: 1 to %d keyframes of at most %d steps",
+                        RF_MOTION_MAX_KEYS, RF_MOTION_MAX_STEPS);
+    for (int k = 0; k < mo->key_count; k++) {
+        if (!isfinite(mo->time[k]) || (k > 0 && !(mo->time[k] > mo->time[k - 1])))
+            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "motion: keyframe times must be finite and increase");
+        for (int i = 0; i < mo->step_count; i++) {
+            if (mo->steps[k][i].kind != mo->steps[0][i].kind || mo->steps[k][i].axis != mo->steps[0][i].axis)
+                return rf__msgf(msg, msgsz, RF_ERR_DOMAIN,
+                                "motion: keyframe at %g differs in its steps from the first: keyframes list the same steps",
+                                mo->time[k]);
+            for (int j = 0; j < 12; j++)
+                if (!isfinite(mo->steps[k][i].v[j]))
+                    return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "motion: values must be finite");
+        }
+        if (rf_motion_at(mo, mo->time[k], &w, &o, &n) != RF_OK)
+            return rf__msgf(msg, msgsz, RF_ERR_SINGULAR, "motion: the transform at time %g is singular", mo->time[k]);
+    }
+    RfStatus st = reserve((void **)&scene->motions, &scene->motion_cap, scene->motion_count, 1, sizeof *mo);
+    if (st)
+        return rf__msgf(msg, msgsz, st, "out of memory");
+    scene->motions[scene->motion_count] = *mo;
+    RfInstance *in = &scene->instances[index];
+    rf_motion_at(mo, mo->time[0], &in->to_world, &in->to_object, &in->normal_to_world);
+    in->motion = (int)scene->motion_count++;
+    return RF_OK;
+}
+
+int rf_light_is_area(RfLightKind kind)
+{
+    return kind == RF_LIGHT_RECT || kind == RF_LIGHT_DISC || kind == RF_LIGHT_SPHERE;
+}
+
+double rf_light_area(const RfLight *l)
+{
+    switch (l->kind) {
+    case RF_LIGHT_RECT: return rf_vec3_length(rf_vec3_cross(l->edge1, l->edge2));
+    case RF_LIGHT_DISC: return RF_PI * l->radius * l->radius;
+    case RF_LIGHT_SPHERE: return 4.0 * RF_PI * l->radius * l->radius;
+    default: return 0.0;
+    }
 }
 
 /* ---- checks ------------------------------------------------------------------------------ */
@@ -331,6 +419,9 @@ RfStatus rf_scene_camera_check(const RfSceneCamera *cam, RfSrcLoc *loc, char *ms
     } else if (!(cam->fov > 0.0 && cam->fov < 180.0)) {
         return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: field of view must be in (0, 180) degrees");
     }
+    if (!(cam->aperture >= 0.0) || !isfinite(cam->aperture) ||
+        (cam->aperture > 0.0 && (!(cam->focus > 0.0) || !isfinite(cam->focus))))
+        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: needs aperture >= 0 and, with a lens, focus > 0");
     return RF_OK;
 }
 
@@ -359,8 +450,16 @@ static RfStatus check_light(const RfLight *l, char *msg, size_t msgsz)
 {
     if (!finite3(l->position) || !finite3(l->direction) || !nonneg_rgb(l->intensity))
         return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "light: values must be finite, intensity >= 0");
-    if (l->kind != RF_LIGHT_POINT && !(rf_vec3_length(l->direction) > 0.0))
+    if (l->kind != RF_LIGHT_POINT && l->kind != RF_LIGHT_SPHERE && !(rf_vec3_length(l->direction) > 0.0))
         return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE, "light: direction has zero length");
+    if (rf_light_is_area(l->kind)) {
+        if (!finite3(l->edge1) || !finite3(l->edge2) || !isfinite(l->radius))
+            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "area light: values must be finite");
+        if (l->samples < 1 || l->samples > 1 << 16)
+            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "area light: samples must be in [1, 65536]");
+        if (!(rf_light_area(l) > 0.0) || !isfinite(rf_light_area(l)))
+            return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE, "area light: its area must be > 0");
+    }
     if (l->kind == RF_LIGHT_SPOT && (!(l->spot_cutoff > 0.0 && l->spot_cutoff <= 90.0) ||
                                      !(l->spot_exponent >= 0.0) || !isfinite(l->spot_exponent)))
         return rf__msgf(msg, msgsz, RF_ERR_DOMAIN,
@@ -376,6 +475,8 @@ static RfStatus check_material(const RfMaterial *m, char *msg, size_t msgsz)
             return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "material: coefficients must be finite, >= 0");
     if (!(m->shininess >= 0.0) || !isfinite(m->shininess) || !(m->ior > 0.0) || !isfinite(m->ior))
         return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "material: needs shininess >= 0 and ior > 0");
+    if (!(m->gloss >= 0.0) || !isfinite(m->gloss))
+        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "material: needs gloss >= 0");
     return RF_OK;
 }
 
@@ -405,7 +506,11 @@ RfStatus rf_scene_validate(const RfScene *scene, const char *source, char *err, 
         return located(err, errsz, source, loc, msg, st);
     if (r->width < 1 || r->height < 1 || r->max_depth < 1 || r->samples < 1 ||
         !(r->min_contribution >= 0.0 && r->min_contribution <= 1.0) || !nonneg_rgb(r->background) ||
-        !nonneg_rgb(r->ambient))
+        !nonneg_rgb(r->ambient) || (unsigned)r->sampler >= RF_SAMPLER_COUNT ||
+        (unsigned)r->filter.kind >= RF_FILTER_COUNT || !(r->filter.radius > 0.0 && r->filter.radius <= 16.0) ||
+        !(r->filter.sigma > 0.0 || r->filter.kind != RF_FILTER_GAUSSIAN) || !(r->adaptive_threshold >= 0.0) ||
+        r->adaptive_depth < 0 || r->adaptive_depth > 8 || !isfinite(r->shutter_open) ||
+        !isfinite(r->shutter_close) || !(r->shutter_open <= r->shutter_close))
         return located(err, errsz, source, loc, "render settings out of range", RF_ERR_DOMAIN);
     for (size_t i = 0; i < scene->material_count; i++)
         if ((st = check_material(&scene->materials[i], msg, sizeof msg)))
@@ -453,14 +558,23 @@ unsigned rf_scene_features(const RfScene *scene)
             f |= RF_FEAT_AMBIENT;
         if (positive(m->emission))
             f |= RF_FEAT_EMISSION;
+        if (m->gloss > 0.0 && (positive(m->kr) || positive(m->kt)))
+            f |= RF_FEAT_GLOSSY;
     }
     free(used);
+    for (size_t i = 0; i < scene->instance_count; i++)
+        if (scene->instances[i].motion >= 0)
+            f |= RF_FEAT_MOTION;
+    if (scene->camera.aperture > 0.0)
+        f |= RF_FEAT_APERTURE;
     for (size_t i = 0; i < scene->light_count; i++) {
         const RfLight *l = &scene->lights[i];
         if (l->kind != RF_LIGHT_DIRECTIONAL && l->falloff == RF_FALLOFF_INVERSE_SQUARE)
             f |= RF_FEAT_LIGHT_FALLOFF;
         if (l->kind == RF_LIGHT_SPOT)
             f |= RF_FEAT_SPOT_LIGHTS;
+        if (rf_light_is_area(l->kind))
+            f |= RF_FEAT_AREA_LIGHTS;
     }
     return f;
 }
@@ -480,6 +594,7 @@ const char *rf_feature_name(unsigned bit)
     case RF_FEAT_AREA_LIGHTS: return "area-lights";
     case RF_FEAT_MOTION: return "motion";
     case RF_FEAT_APERTURE: return "aperture";
+    case RF_FEAT_GLOSSY: return "glossy";
     }
     return NULL;
 }
@@ -504,6 +619,9 @@ const char *rf_light_kind_name(RfLightKind kind)
     case RF_LIGHT_POINT: return "point";
     case RF_LIGHT_DIRECTIONAL: return "directional";
     case RF_LIGHT_SPOT: return "spot";
+    case RF_LIGHT_RECT: return "rect";
+    case RF_LIGHT_DISC: return "disc";
+    case RF_LIGHT_SPHERE: return "sphere";
     case RF_LIGHT_KIND_COUNT: break;
     }
     return "light";

@@ -1,0 +1,402 @@
+/* Sample patterns, warps and reconstruction filters (§3.9, §3.10). Every value is a pure function
+ * of its arguments: the jitter comes from the counter-based generator (rng.h), the shuffles and
+ * scrambles from keys hashed out of (pixel, dimension, seed), so there is no state at all. */
+#include "refray/sampling.h"
+#include "refray/rng.h"
+
+#include <math.h>
+#include <string.h>
+
+/* The largest double below 1: where a jittered cell could round up to 1.0, the result is
+ * clamped to it, so that every sample lies in [0,1). */
+static const double rf_one_minus = 0x1.fffffffffffffp-1;
+
+static double rf_below_one(double x)
+{
+    return x < 1.0 ? x : rf_one_minus;
+}
+
+/* ---- keys, permutations, scrambles -------------------------------------------------------- */
+
+/* Tags that tell the keys of one (pixel, dimension, seed) apart. */
+enum { RF_KEY_ORDER = 1, RF_KEY_LHS_Y, RF_KEY_SOBOL_INDEX, RF_KEY_SOBOL_X, RF_KEY_SOBOL_Y };
+
+/* A 64-bit key for one use within a pixel and dimension. The chain differs from rng.h's (other
+ * constants, add instead of xor), so keys and jitter values are unrelated. */
+static uint64_t rf_key(uint64_t pixel, uint32_t dimension, uint64_t seed, uint32_t tag)
+{
+    uint64_t h = rf_mix64(seed ^ 0x5851F42D4C957F2DULL);
+    h = rf_mix64(h + pixel * 0x9E3779B97F4A7C15ULL);
+    return rf_mix64(h ^ (((uint64_t)tag << 32) | dimension));
+}
+
+/* A keyed bijection of [0, n) for any n: the swap-or-not shuffle (Hoang, Morris and Rogaway,
+ * "An Enciphering Scheme Based on a Card Shuffle", 2012). Each round draws K in [0, n) and pairs
+ * every x with K - x (mod n); a hash of the round and the pair decides whether the two swap. A
+ * round is an involution, so the chain is a bijection, with no cycle walking; the rounds grow
+ * with log2 n. It takes the place of a hash permutation in the manner of Kensler's permute()
+ * ("Correlated Multi-Jittered Sampling", 2013): a chain of masked multiplications and
+ * xorshifts, cycle-walked, reached only 16 of the 24 orders of n = 4, and a Feistel network
+ * with 1- and 2-bit halves was visibly uneven. */
+static uint32_t rf_permute(uint32_t x, uint32_t n, uint64_t key)
+{
+    if (n <= 1)
+        return 0;
+    unsigned bits = 0;
+    while (bits < 32 && ((uint64_t)1 << bits) < n)
+        bits++;
+    /* measured over 2e5 keys: with 2 bits + 8 rounds the 24 orders of n = 4 are still uneven
+     * (chi^2 60 on 23 dof); with 3 bits + 8 they are not (26), nor pairs (x(0), x(n-1)) up to 100 */
+    unsigned rounds = 3 * bits + 8;
+    for (uint64_t r = 0; r < rounds; r++) {
+        uint64_t h = rf_mix64(key + r * 0xD1B54A32D192ED03ULL);
+        uint32_t k = (uint32_t)(((h >> 32) * n) >> 32); /* uniform in [0, n) up to n / 2^32 */
+        uint32_t partner = k >= x ? k - x : k + (n - x); /* K - x mod n */
+        uint32_t hi = x > partner ? x : partner;
+        if (rf_mix64(h ^ hi) & 1u)
+            x = partner;
+    }
+    return x;
+}
+
+static uint32_t rf_reverse_bits(uint32_t x)
+{
+    x = (x << 16) | (x >> 16);
+    x = ((x & 0x00FF00FFu) << 8) | ((x >> 8) & 0x00FF00FFu);
+    x = ((x & 0x0F0F0F0Fu) << 4) | ((x >> 4) & 0x0F0F0F0Fu);
+    x = ((x & 0x33333333u) << 2) | ((x >> 2) & 0x33333333u);
+    x = ((x & 0x55555555u) << 1) | ((x >> 1) & 0x55555555u);
+    return x;
+}
+
+/* A keyed Laine-Karras permutation (Burley 2020, "Practical Hash-based Owen Scrambling", §3):
+ * built only of addition, multiplication by an odd number and x ^= x * (even number), each of
+ * which changes bit i as a function of bits 0..i alone. The key enters both an addition and a
+ * multiplier, so whether the flip of bit i depends on a lower bit varies from key to key. */
+static uint32_t rf_lk_permute(uint32_t x, uint64_t key)
+{
+    x += (uint32_t)key;
+    x *= (uint32_t)(key >> 32) | 1u;
+    x ^= x * 0xA3B195A4u;
+    x += (uint32_t)(key >> 16);
+    x *= 0x2C1B3C6Du;
+    x ^= x * 0x297A2D38u;
+    x *= (uint32_t)(key >> 40) | 1u;
+    x ^= x * 0x6A09E66Cu;
+    return x;
+}
+
+/* Owen's nested uniform scramble of a 32-bit fraction (Burley 2020): read with its most
+ * significant bit first, the flip of each digit depends only on the digits before it, so every
+ * elementary interval is mapped onto one of the same size. */
+static uint32_t rf_owen_scramble(uint32_t x, uint64_t key)
+{
+    return rf_reverse_bits(rf_lk_permute(rf_reverse_bits(x), key));
+}
+
+/* The second component of the 2D Sobol sequence as a 32-bit fraction: the generator matrix of
+ * the primitive polynomial x + 1 (direction numbers m_1 = 1, m_j = 2 m_{j-1} xor m_{j-1}, i.e.
+ * Pascal's triangle mod 2), column j being v_j = m_j 2^(32-j). The first component is the van
+ * der Corput sequence, rf_reverse_bits(i). */
+static uint32_t rf_sobol_y(uint32_t i)
+{
+    uint32_t y = 0, v = 0x80000000u;
+    for (; i; i >>= 1, v ^= v >> 1)
+        if (i & 1u)
+            y ^= v;
+    return y;
+}
+
+/* The index of sample k in the Sobol sequence: the same nested scramble applied to the integer
+ * k (Burley 2020 §4, "shuffling"). Bit j of the result is bit j of k flipped by a function of
+ * the bits above j, so each aligned block [a 2^m, (a+1) 2^m) of samples is an aligned block of
+ * the sequence, in another order: the shuffled sequence is again a (0,2)-sequence, and any
+ * prefix is a union of nets. */
+static uint32_t rf_sobol_index(uint32_t k, uint64_t pixel, uint32_t dimension, uint64_t seed)
+{
+    return rf_owen_scramble(k, rf_key(pixel, dimension, seed, RF_KEY_SOBOL_INDEX));
+}
+
+static const double rf_two_m32 = 1.0 / 4294967296.0;
+
+/* floor(sqrt(n)), exactly. */
+static uint32_t rf_isqrt(uint32_t n)
+{
+    uint64_t a = (uint64_t)sqrt((double)n);
+    while (a * a > n)
+        a--;
+    while ((a + 1) * (a + 1) <= n)
+        a++;
+    return (uint32_t)a;
+}
+
+/* ---- sample patterns ----------------------------------------------------------------------- */
+
+const char *rf_sampler_name(RfSampler s)
+{
+    switch (s) {
+    case RF_SAMPLER_UNIFORM: return "uniform";
+    case RF_SAMPLER_RANDOM: return "random";
+    case RF_SAMPLER_STRATIFIED: return "stratified";
+    case RF_SAMPLER_SOBOL: return "sobol";
+    case RF_SAMPLER_COUNT: break;
+    }
+    return "sampler";
+}
+
+int rf_sampler_parse(const char *name)
+{
+    for (int s = 0; s < RF_SAMPLER_COUNT; s++)
+        if (name && strcmp(name, rf_sampler_name((RfSampler)s)) == 0)
+            return s;
+    return -1;
+}
+
+/* Stratified: the cell of sample k. Dimension 0 (the pixel position) keeps the order k, so that
+ * it is the renderer's historical pattern; other dimensions shuffle it, so that the strata of two
+ * dimensions are not paired the same way in every pixel. */
+static uint32_t rf_cell(uint32_t k, uint32_t n, uint64_t pixel, uint32_t dimension, uint64_t seed)
+{
+    return dimension == 0 ? k : rf_permute(k, n, rf_key(pixel, dimension, seed, RF_KEY_ORDER));
+}
+
+void rf_sample_2d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_t dimension, uint64_t seed,
+                  double out[2])
+{
+    uint32_t du = 2 * dimension, dv = 2 * dimension + 1;
+    if (n == 0)
+        n = 1;
+    switch (s) {
+    case RF_SAMPLER_UNIFORM: {
+        uint32_t a = rf_isqrt(n), b = n / a + (n % a != 0);
+        k %= n;
+        out[0] = ((double)(k % a) + 0.5) / (double)a;
+        out[1] = ((double)(k / a) + 0.5) / (double)b;
+        return;
+    }
+    case RF_SAMPLER_STRATIFIED: {
+        k %= n;
+        double u = rf_rng_uniform(pixel, k, du, seed), v = rf_rng_uniform(pixel, k, dv, seed);
+        uint32_t c = rf_cell(k, n, pixel, dimension, seed), side = rf_isqrt(n);
+        if (side * side == n) {
+            /* the operations of the renderer's k x k jitter, in the same order; the clamp only
+             * acts when (side - 1) + u rounds up to side, which the renderer let through as 1.0 */
+            out[0] = rf_below_one(((double)(c % side) + u) / (double)side);
+            out[1] = rf_below_one(((double)(c / side) + v) / (double)side);
+        } else {
+            /* Latin hypercube: column c, row a second permutation of c */
+            uint32_t r = rf_permute(c, n, rf_key(pixel, dimension, seed, RF_KEY_LHS_Y));
+            out[0] = rf_below_one(((double)c + u) / (double)n);
+            out[1] = rf_below_one(((double)r + v) / (double)n);
+        }
+        return;
+    }
+    case RF_SAMPLER_SOBOL: {
+        uint32_t i = rf_sobol_index(k, pixel, dimension, seed);
+        uint32_t x = rf_owen_scramble(rf_reverse_bits(i), rf_key(pixel, dimension, seed, RF_KEY_SOBOL_X));
+        uint32_t y = rf_owen_scramble(rf_sobol_y(i), rf_key(pixel, dimension, seed, RF_KEY_SOBOL_Y));
+        out[0] = (double)x * rf_two_m32;
+        out[1] = (double)y * rf_two_m32;
+        return;
+    }
+    case RF_SAMPLER_RANDOM:
+    case RF_SAMPLER_COUNT:
+        break;
+    }
+    out[0] = rf_rng_uniform(pixel, k, du, seed);
+    out[1] = rf_rng_uniform(pixel, k, dv, seed);
+}
+
+double rf_sample_1d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_t dimension, uint64_t seed)
+{
+    uint32_t du = 2 * dimension;
+    if (n == 0)
+        n = 1;
+    switch (s) {
+    case RF_SAMPLER_UNIFORM:
+        return ((double)(k % n) + 0.5) / (double)n;
+    case RF_SAMPLER_STRATIFIED: {
+        k %= n;
+        double u = rf_rng_uniform(pixel, k, du, seed);
+        return rf_below_one(((double)rf_cell(k, n, pixel, dimension, seed) + u) / (double)n);
+    }
+    case RF_SAMPLER_SOBOL: {
+        /* the first component of the 2D sample: the scrambled van der Corput sequence */
+        uint32_t i = rf_sobol_index(k, pixel, dimension, seed);
+        uint32_t x = rf_owen_scramble(rf_reverse_bits(i), rf_key(pixel, dimension, seed, RF_KEY_SOBOL_X));
+        return (double)x * rf_two_m32;
+    }
+    case RF_SAMPLER_RANDOM:
+    case RF_SAMPLER_COUNT:
+        break;
+    }
+    return rf_rng_uniform(pixel, k, du, seed);
+}
+
+/* ---- warps --------------------------------------------------------------------------------- */
+
+/* Shirley and Chiu, "A Low Distortion Map Between Disk and Square" (1997): the square
+ * [-1,1]^2 is cut into four triangles by its diagonals; in each, the distance from the centre
+ * along the major axis becomes the radius and the position along the edge the angle, so
+ * concentric squares map onto concentric circles and area is preserved. */
+void rf_warp_disk(double u, double v, double *x, double *y)
+{
+    double a = 2.0 * u - 1.0, b = 2.0 * v - 1.0, r, phi;
+    if (a == 0.0 && b == 0.0) {
+        *x = 0.0;
+        *y = 0.0;
+        return;
+    }
+    if (fabs(a) > fabs(b)) {
+        r = a;
+        phi = (RF_PI / 4.0) * (b / a);
+    } else {
+        r = b;
+        phi = RF_PI / 2.0 - (RF_PI / 4.0) * (a / b);
+    }
+    *x = r * cos(phi);
+    *y = r * sin(phi);
+}
+
+/* The direction at cos(theta) = 1 - t, azimuth 2 pi v; sin^2 = t (2 - t) keeps its digits near
+ * the pole, where 1 - z^2 would cancel. */
+static RfVec3 rf_direction(double t, double v)
+{
+    double z = 1.0 - t, r = sqrt(fmax(0.0, t * (2.0 - t))), phi = 2.0 * RF_PI * v;
+    return rf_vec3(r * cos(phi), r * sin(phi), z);
+}
+
+/* Archimedes: z is uniform on [-1, 1] for a uniform point on the sphere. */
+RfVec3 rf_warp_sphere(double u, double v)
+{
+    return rf_direction(2.0 * u, v);
+}
+
+/* The solid angle of a cap is 2 pi (1 - cos_max), linear in 1 - cos(theta): that is uniform. */
+RfVec3 rf_warp_cone(double u, double v, double cos_max)
+{
+    return rf_direction(u * (1.0 - cos_max), v);
+}
+
+double rf_warp_cone_pdf(double cos_max)
+{
+    return 1.0 / (2.0 * RF_PI * (1.0 - cos_max));
+}
+
+/* The density of z = cos(theta) is (n + 1) z^n on [0, 1], its distribution function z^(n+1):
+ * z = u^(1/(n+1)) inverts it. */
+RfVec3 rf_warp_cos_power(double u, double v, double n)
+{
+    double z = pow(u, 1.0 / (n + 1.0)), r = sqrt(fmax(0.0, (1.0 - z) * (1.0 + z))), phi = 2.0 * RF_PI * v;
+    return rf_vec3(r * cos(phi), r * sin(phi), z);
+}
+
+double rf_warp_cos_power_pdf(RfVec3 dir, double n)
+{
+    return dir.z > 0.0 ? (n + 1.0) / (2.0 * RF_PI) * pow(dir.z, n) : 0.0;
+}
+
+/* Duff, Burgess, Christensen, Hery, Kensler, Liani, Villemin, "Building an Orthonormal Basis,
+ * Revisited" (JCGT 2017): Frisvad's closed form with the sign of n.z chosen by copysign, which
+ * removes its singularity at n = -z without a threshold. Right-handed: s x t = n. */
+RfFrame rf_frame(RfVec3 n)
+{
+    double sign = copysign(1.0, n.z), a = -1.0 / (sign + n.z), b = n.x * n.y * a;
+    RfFrame f;
+    f.s = rf_vec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    f.t = rf_vec3(b, sign + n.y * n.y * a, -n.y);
+    f.n = n;
+    return f;
+}
+
+RfVec3 rf_frame_to_world(const RfFrame *f, RfVec3 local)
+{
+    return rf_vec3_add(rf_vec3_add(rf_vec3_scale(f->s, local.x), rf_vec3_scale(f->t, local.y)),
+                       rf_vec3_scale(f->n, local.z));
+}
+
+/* ---- reconstruction filters ---------------------------------------------------------------- */
+
+RfFilter rf_filter_default(RfFilterKind kind)
+{
+    RfFilter f;
+    f.kind = kind;
+    f.sigma = 0.0;
+    switch (kind) {
+    case RF_FILTER_GAUSSIAN:
+        f.radius = 1.5;
+        f.sigma = 0.5;
+        break;
+    case RF_FILTER_MITCHELL:
+        f.radius = 2.0;
+        break;
+    case RF_FILTER_BOX:
+    case RF_FILTER_COUNT:
+    default:
+        f.radius = 0.5;
+        break;
+    }
+    return f;
+}
+
+const char *rf_filter_name(RfFilterKind kind)
+{
+    switch (kind) {
+    case RF_FILTER_BOX: return "box";
+    case RF_FILTER_GAUSSIAN: return "gaussian";
+    case RF_FILTER_MITCHELL: return "mitchell";
+    case RF_FILTER_COUNT: break;
+    }
+    return "filter";
+}
+
+int rf_filter_parse(const char *name)
+{
+    for (int k = 0; k < RF_FILTER_COUNT; k++)
+        if (name && strcmp(name, rf_filter_name((RfFilterKind)k)) == 0)
+            return k;
+    return -1;
+}
+
+/* The Gaussian shifted down by its value at the radius, so that it reaches 0 there without a
+ * step (as pbrt does). */
+static double rf_gaussian_1d(double x, double sigma, double radius)
+{
+    double s2 = 2.0 * sigma * sigma;
+    return fmax(0.0, exp(-x * x / s2) - exp(-radius * radius / s2));
+}
+
+/* Mitchell and Netravali, "Reconstruction Filters in Computer Graphics" (1988), eq. 8: the
+ * cubic with support [-2, 2], here B = C = 1/3 (their recommendation). It integrates to 1. */
+static double rf_mitchell_1d(double x)
+{
+    const double B = 1.0 / 3.0, C = 1.0 / 3.0;
+    x = fabs(x);
+    if (x < 1.0)
+        return ((12.0 - 9.0 * B - 6.0 * C) * x * x * x + (-18.0 + 12.0 * B + 6.0 * C) * x * x + (6.0 - 2.0 * B)) /
+               6.0;
+    if (x < 2.0)
+        return ((-B - 6.0 * C) * x * x * x + (6.0 * B + 30.0 * C) * x * x + (-12.0 * B - 48.0 * C) * x +
+                (8.0 * B + 24.0 * C)) /
+               6.0;
+    return 0.0;
+}
+
+double rf_filter_eval(const RfFilter *f, double dx, double dy)
+{
+    double r = f->radius;
+    if (!(fabs(dx) <= r && fabs(dy) <= r))
+        return 0.0;
+    switch (f->kind) {
+    case RF_FILTER_BOX:
+        return 1.0;
+    case RF_FILTER_GAUSSIAN:
+        return rf_gaussian_1d(dx, f->sigma, r) * rf_gaussian_1d(dy, f->sigma, r);
+    case RF_FILTER_MITCHELL:
+        /* the kernel's support [-2, 2] stretched onto [-r, r] */
+        return rf_mitchell_1d(2.0 * dx / r) * rf_mitchell_1d(2.0 * dy / r);
+    case RF_FILTER_COUNT:
+        break;
+    }
+    return 0.0;
+}
