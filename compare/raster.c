@@ -490,6 +490,12 @@ RfStatus rf_raster_render(const RfScene *s, const RfRasterOptions *opt,
         snprintf(err, errsz, "the scene has no camera");
         return RF_ERR_DOMAIN;
     }
+    for (size_t i = 0; i < s->light_count; i++)
+        if (rf_light_is_area(s->lights[i].kind)) { /* §3.10: no OpenGL counterpart to compare with */
+            snprintf(err, errsz, "%s light (line %d): the rasterizer has point, directional and spot lights only",
+                     rf_light_kind_name(s->lights[i].kind), s->lights[i].loc.line);
+            return RF_ERR_DOMAIN;
+        }
     memset(&vw, 0, sizeof vw);
     vw.width = opt->width > 0 ? opt->width : s->render.width;
     vw.height = opt->height > 0 ? opt->height : s->render.height;

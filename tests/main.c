@@ -25,6 +25,7 @@ extern const RfTest rf_tests_mesh[];
 extern const RfTest rf_tests_docs[];
 extern const RfTest rf_tests_distributed[];
 extern const RfTest rf_tests_sampling[];
+extern const RfTest rf_tests_bench[];
 
 static const RfTest *const suites[] = {
     rf_tests_vecmat, rf_tests_geometry, rf_tests_transform, rf_tests_formula, rf_tests_cli,
@@ -35,6 +36,7 @@ static const RfTest *const suites[] = {
     rf_tests_mesh,
     rf_tests_docs,
     rf_tests_sampling,
+    rf_tests_bench,
     rf_tests_distributed,
 };
 

@@ -50,6 +50,8 @@ static void print_camera(const RfScene *s)
                c->fov_reading == RF_FOV_EDGES ? "edge to edge" : "between outer pixel centres");
     printf(", d %g, hither %g\n          window l %.9g r %.9g b %.9g t %.9g\n", c->d, c->hither,
            w.l, w.r, w.b, w.t);
+    if (c->aperture > 0.0)
+        printf("          thin lens: aperture radius %g, focus %g\n", c->aperture, c->focus);
 }
 
 /* Returns the number of planes (unbounded, so left out of the bounds). */
@@ -86,8 +88,11 @@ static void print_graph(const RfScene *s, int all)
                            !(s->prims[i].flags & RF_PRIM_IN_OBJECT);
     RfTriangleCount tc = rf_scene_triangle_count(s);
     if (s->object_count || s->instance_count) {
-        printf("objects   %zu, instances %zu (%zu placed in the world; %zu after expanding groups)\n",
+        printf("objects   %zu, instances %zu (%zu placed in the world; %zu after expanding groups)",
                s->object_count, s->instance_count, world_instances, tc.instances_rendered);
+        if (s->motion_count)
+            printf(", %zu moving", s->motion_count);
+        printf("\n");
         for (size_t o = 0; o < s->object_count; o++) {
             if (!all && o == INFO_LIST_MAX) {
                 printf("          ... and %zu more (--all lists them)\n", s->object_count - o);
@@ -137,6 +142,8 @@ static void print_materials(const RfScene *s, int all)
         printf(" ior %g", m->ior);
         if (m->emission.r > 0 || m->emission.g > 0 || m->emission.b > 0)
             rgb("emission", m->emission);
+        if (m->gloss > 0.0)
+            printf(" glossy %g", m->gloss);
         printf("%s%s\n", m->flags & RF_MAT_FRESNEL ? " fresnel" : "",
                m->flags & RF_MAT_SMOOTH ? " smooth" : " flat");
     }
@@ -166,6 +173,19 @@ static void print_lights(const RfScene *s, int all)
             vec(l->kind == RF_LIGHT_SPOT ? "axis" : "direction", l->direction);
         if (l->kind == RF_LIGHT_SPOT)
             printf(" exponent %g cutoff %g deg", l->spot_exponent, l->spot_cutoff);
+        if (rf_light_is_area(l->kind)) {
+            if (l->kind == RF_LIGHT_RECT) {
+                vec("edge1", l->edge1);
+                vec("edge2", l->edge2);
+            } else {
+                printf(" radius %g", l->radius);
+            }
+            rgb("radiance", l->intensity);
+            printf(" area %g, %s, %d sample%s\n", rf_light_area(l),
+                   l->kind == RF_LIGHT_SPHERE ? "outward" : l->two_sided ? "two-sided" : "one-sided", l->samples,
+                   l->samples == 1 ? "" : "s");
+            continue;
+        }
         rgb("intensity", l->intensity);
         if (l->kind != RF_LIGHT_DIRECTIONAL)
             printf(" %s", l->falloff == RF_FALLOFF_NONE ? "no falloff" : "inverse-square");
@@ -210,6 +230,12 @@ int rf_cmd_info(int argc, char **argv)
     print_camera(&s);
     printf("image     %d x %d, depth %d, threshold %g, %d sample%s per pixel\n", r->width,
            r->height, r->max_depth, r->min_contribution, r->samples, r->samples == 1 ? "" : "s");
+    if (r->adaptive)
+        printf("          sampler adaptive (threshold %g, depth %d)", r->adaptive_threshold, r->adaptive_depth);
+    else
+        printf("          sampler %s", rf_sampler_name(r->sampler));
+    printf(", filter %s radius %g, shutter %g .. %g\n", rf_filter_name(r->filter.kind), r->filter.radius,
+           r->shutter_open, r->shutter_close);
     printf("         ");
     rgb("background", r->background);
     rgb("ambient", r->ambient);

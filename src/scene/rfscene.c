@@ -593,7 +593,7 @@ static RfStatus read_instance(RfReader *r, const RfToken *kw)
         }
         if (rf_lex_is(&a, "at")) {
             if (k + 1 >= RF_MOTION_MAX_KEYS) {
-                st = rf_lex_error(lx, a.line, a.col, "more than %d keyframes", RF_MOTION_MAX_KEYS - 1);
+                st = rf_lex_error(lx, a.line, a.col, "more than %d keyframes", RF_MOTION_MAX_KEYS);
             } else if (!(st = rf_lex_number(lx, "keyframe time", &mo->time[k + 1]))) {
                 if ((k > 0 || timed0) && !(mo->time[k + 1] > mo->time[k]))
                     st = rf_lex_error(lx, a.line, a.col, "keyframe times must increase");

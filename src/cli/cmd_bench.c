@@ -1,0 +1,700 @@
+/* `refray bench`: run time against error. Renders a scene with each sampling strategy at several
+ * sample counts, measures the median wall time of the whole render call (tracer build included)
+ * and the error against a converged reference (RMSE and relMSE over all W x H x 3 values), and
+ * reports the time each strategy needs to reach relMSE 1e-3 (log-log interpolation between the
+ * two rows that bracket it, as tools/anchor_soft.py does for the anchor renderers). */
+#include "cli.h"
+#include "args.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "refray/diff.h"
+#include "refray/image.h"
+#include "refray/render.h"
+#include "refray/sampling.h"
+#include "refray/scene_io.h"
+
+#define TARGET 1e-3          /* the relMSE every strategy is timed to */
+#define TARGET_TEXT "1e-3"
+#define REF_SEED_OFFSET 1000003u
+#define MAX_STRATEGIES 8
+#define MAX_SPP 16
+#define MAX_RUNS 100
+#define MAX_ANCHOR_ROWS 1024
+#define ADAPTIVE (-2)        /* a strategy that is §3.9 adaptive supersampling, not an RfSampler */
+#define ADAPTIVE_DEPTHS 3    /* its rows: adaptive_depth 1, 2, 3 */
+
+/* One measurement: a row of the table and of the CSV. */
+typedef struct {
+    char renderer[32], strategy[32];
+    double spp, seconds, rmse, relmse;
+} Row;
+
+typedef struct {
+    const char *scene, *ref, *csv, *plot, *anchors;
+    int ref_samples, runs, threads, width, height, light_samples, seed, quiet;
+    int strategy[MAX_STRATEGIES], nstrategies; /* RfSampler or ADAPTIVE */
+    int spp[MAX_SPP], nspp;                     /* ascending */
+} Args;
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+            "usage: refray bench SCENE [--ref REF.exr] [--ref-samples N] [--samplers LIST] [--spp LIST]\n"
+            "                    [--runs R] [--threads T] [--width W --height H] [--seed S]\n"
+            "                    [--light-samples N] [--csv OUT.csv] [--plot OUT.png|OUT.svg]\n"
+            "                    [--anchors ANCHORS.csv] [--quiet]\n"
+            "  Run time against error: each strategy at each sample count is rendered R times\n"
+            "  (default 3); seconds = the median wall time of the render call (tracer build\n"
+            "  included, scene loading not), errors against the reference over all W x H x 3 values:\n"
+            "  RMSE = sqrt(mean (x-r)^2), relMSE = mean (x-r)^2 / (r^2 + 0.01).\n"
+            "  --ref          the reference (linear EXR of the same size); default: rendered with\n"
+            "                 --ref-samples (default 1024) sobol samples and seed S + %u, written to\n"
+            "                 <OUT>_ref.exr when --csv OUT.csv is given\n"
+            "  --samplers     default random,stratified,sobol,uniform,adaptive; adaptive is §3.9\n"
+            "                 adaptive supersampling at depths 1..3 (its spp: the mean samples taken)\n"
+            "  --spp          default 1,4,16,64,256\n"
+            "  --csv          rows renderer,strategy,spp,seconds,rmse,relmse (renderer \"refray\")\n"
+            "  --plot         log-log relMSE against seconds with gnuplot (OUT.gp and OUT.dat beside)\n"
+            "  --anchors      rows of other renderers in the CSV form (tools/anchor_soft.py): their\n"
+            "                 time to relMSE 1e-3 and its ratio to refray's best\n"
+            "  --quiet        no progress lines on stderr\n",
+            REF_SEED_OFFSET);
+}
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static const char *strategy_name(int s)
+{
+    return s == ADAPTIVE ? "adaptive" : rf_sampler_name((RfSampler)s);
+}
+
+/* ---- options ------------------------------------------------------------------------------ */
+
+/* A comma-separated list into items of < 32 characters; the count, or -1 when it is empty, has
+ * an empty or too long item, or more than max items. */
+static int split_list(const char *s, char items[][32], int max)
+{
+    int n = 0;
+    for (;;) {
+        size_t len = strcspn(s, ",");
+        if (len == 0 || len >= 32 || n == max)
+            return -1;
+        memcpy(items[n], s, len);
+        items[n++][len] = 0;
+        if (!s[len])
+            return n;
+        s += len + 1;
+    }
+}
+
+static int parse_strategies(const char *v, Args *a)
+{
+    char items[MAX_STRATEGIES][32];
+    a->nstrategies = split_list(v, items, MAX_STRATEGIES);
+    for (int i = 0; i < a->nstrategies; i++) {
+        a->strategy[i] = strcmp(items[i], "adaptive") == 0 ? ADAPTIVE : rf_sampler_parse(items[i]);
+        if (a->strategy[i] == -1)
+            return 0;
+    }
+    return a->nstrategies > 0;
+}
+
+static int parse_spp(const char *v, Args *a)
+{
+    char items[MAX_SPP][32];
+    a->nspp = split_list(v, items, MAX_SPP);
+    for (int i = 0; i < a->nspp; i++) {
+        int s;
+        if (!rf_arg_int(items[i], 1, 1 << 20, &s))
+            return 0;
+        int j = i; /* insertion sort: the rows of a strategy must come by spp */
+        for (; j > 0 && a->spp[j - 1] > s; j--)
+            a->spp[j] = a->spp[j - 1];
+        a->spp[j] = s;
+    }
+    return a->nspp > 0;
+}
+
+/* 0: run; 1: help was printed (exit 0); 2: a usage error was reported (exit 2). */
+static int parse_args(int argc, char **argv, Args *a)
+{
+    memset(a, 0, sizeof *a);
+    a->ref_samples = 1024, a->runs = 3, a->seed = 1;
+    parse_strategies("random,stratified,sobol,uniform,adaptive", a);
+    parse_spp("1,4,16,64,256", a);
+    for (int i = 1; i < argc; i++) {
+        const char *o = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int ok = 1, takes = 1;
+        if (strcmp(o, "--help") == 0 || strcmp(o, "-h") == 0) {
+            usage(stdout);
+            return 1;
+        } else if (strcmp(o, "--quiet") == 0) {
+            a->quiet = 1, takes = 0;
+        } else if (o[0] != '-') {
+            if (a->scene) {
+                fprintf(stderr, "refray bench: one scene only, '%s' is a second (see: refray bench --help)\n", o);
+                return 2;
+            }
+            a->scene = o, takes = 0;
+        } else if (!v) {
+            ok = 0;
+        } else if (strcmp(o, "--ref") == 0) {
+            a->ref = v;
+        } else if (strcmp(o, "--csv") == 0) {
+            a->csv = v;
+        } else if (strcmp(o, "--anchors") == 0) {
+            a->anchors = v;
+        } else if (strcmp(o, "--plot") == 0) {
+            const char *dot = strrchr(v, '.');
+            a->plot = v;
+            ok = dot && (strcmp(dot, ".png") == 0 || strcmp(dot, ".svg") == 0);
+        } else if (strcmp(o, "--ref-samples") == 0) {
+            ok = rf_arg_int(v, 1, 1 << 20, &a->ref_samples);
+        } else if (strcmp(o, "--samplers") == 0) {
+            ok = parse_strategies(v, a);
+        } else if (strcmp(o, "--spp") == 0) {
+            ok = parse_spp(v, a);
+        } else if (strcmp(o, "--runs") == 0) {
+            ok = rf_arg_int(v, 1, MAX_RUNS, &a->runs);
+        } else if (strcmp(o, "--threads") == 0) {
+            ok = rf_arg_int(v, 1, 1024, &a->threads);
+        } else if (strcmp(o, "--width") == 0) {
+            ok = rf_arg_int(v, 1, 65536, &a->width);
+        } else if (strcmp(o, "--height") == 0) {
+            ok = rf_arg_int(v, 1, 65536, &a->height);
+        } else if (strcmp(o, "--seed") == 0) {
+            ok = rf_arg_int(v, 0, 2147483647, &a->seed);
+        } else if (strcmp(o, "--light-samples") == 0) {
+            ok = rf_arg_int(v, 1, 1 << 16, &a->light_samples);
+        } else {
+            fprintf(stderr, "refray bench: unknown option '%s' (see: refray bench --help)\n", o);
+            return 2;
+        }
+        if (!ok) {
+            if (!v && takes)
+                fprintf(stderr, "refray bench: %s needs a value (see: refray bench --help)\n", o);
+            else
+                fprintf(stderr, "refray bench: bad value '%s' for %s (see: refray bench --help)\n", v, o);
+            return 2;
+        }
+        i += takes;
+    }
+    if (!a->scene) {
+        usage(stderr);
+        return 2;
+    }
+    return 0;
+}
+
+/* ---- measuring ---------------------------------------------------------------------------- */
+
+static int cmp_double(const void *x, const void *y)
+{
+    double a = *(const double *)x, b = *(const double *)y;
+    return (a > b) - (a < b);
+}
+
+/* Renders runs times: *seconds = the median time of the rf_render call, *img and *st those of the
+ * first run (the same seed gives the same image every run; a difference is reported). */
+static RfStatus render_measured(const RfScene *scene, const RfRenderOptions *opt, int runs, double *seconds,
+                                RfImage *img, RfRenderStats *st)
+{
+    double t[MAX_RUNS];
+    for (int r = 0; r < runs; r++) {
+        RfImage again;
+        RfRenderStats st2;
+        double t0 = now();
+        RfStatus s = rf_render(scene, opt, r == 0 ? img : &again, r == 0 ? st : &st2);
+        t[r] = now() - t0;
+        if (s != RF_OK) {
+            if (r > 0)
+                rf_image_free(img);
+            return s;
+        }
+        if (r > 0) {
+            if (memcmp(img->data, again.data, sizeof(float) * 3 * (size_t)img->width * img->height) != 0)
+                fprintf(stderr, "refray bench: warning: run %d gave a different image than run 1\n", r + 1);
+            rf_image_free(&again);
+        }
+    }
+    qsort(t, (size_t)runs, sizeof t[0], cmp_double);
+    *seconds = runs % 2 ? t[runs / 2] : 0.5 * (t[runs / 2 - 1] + t[runs / 2]);
+    return RF_OK;
+}
+
+/* RMSE and relMSE of img against ref (rf_diff_images: the same definitions); 0 on a mismatch. */
+static int image_errors(const RfImage *img, const RfImage *ref, double *rmse, double *relmse)
+{
+    RfDiffOptions dopt = rf_diff_options_default();
+    RfDiffResult res;
+    char err[256];
+    if (rf_diff_images(img, ref, NULL, NULL, &dopt, &res, NULL, err, sizeof err) != RF_OK)
+        return 0;
+    *rmse = res.all.rmse;
+    *relmse = res.all.rel_mse;
+    return 1;
+}
+
+/* ---- time to the target ------------------------------------------------------------------- */
+
+/* The rows of one strategy, by spp: the time to reach relMSE target, interpolated log-log between
+ * the first two consecutive rows that bracket it (e0 > target >= e1); the first row's time when
+ * that row is already at or below it; NAN when no row reaches it. text gets it in words. */
+static double time_to_target(const Row *rows, int n, double target, char *text, size_t size)
+{
+    if (n == 0) {
+        snprintf(text, size, "no data");
+        return NAN;
+    }
+    if (rows[0].relmse <= target) {
+        snprintf(text, size, "%.4g s (below at the first row, %g spp)", rows[0].seconds, rows[0].spp);
+        return rows[0].seconds;
+    }
+    for (int i = 0; i + 1 < n; i++) {
+        const Row *a = &rows[i], *b = &rows[i + 1];
+        if (a->relmse > target && target >= b->relmse) {
+            double t = b->seconds;
+            if (b->relmse > 0.0 && a->seconds > 0.0 && b->seconds > 0.0) {
+                double f = (log(target) - log(a->relmse)) / (log(b->relmse) - log(a->relmse));
+                t = exp(log(a->seconds) + f * (log(b->seconds) - log(a->seconds)));
+            }
+            snprintf(text, size, "%.4g s (between %g and %g spp)", t, a->spp, b->spp);
+            return t;
+        }
+    }
+    snprintf(text, size, "not reached (relMSE %.3g at %g spp)", rows[n - 1].relmse, rows[n - 1].spp);
+    return NAN;
+}
+
+/* The number of rows from rows[0] on with its renderer and strategy. */
+static int group_len(const Row *rows, int n)
+{
+    int k = 1;
+    while (k < n && strcmp(rows[k].renderer, rows[0].renderer) == 0 && strcmp(rows[k].strategy, rows[0].strategy) == 0)
+        k++;
+    return k;
+}
+
+/* ---- files -------------------------------------------------------------------------------- */
+
+/* path with its extension (after the last '.' of the last component) replaced by suffix. */
+static void with_suffix(const char *path, const char *suffix, char *out, size_t size)
+{
+    const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
+    int len = dot && (!slash || dot > slash + 1) ? (int)(dot - path) : (int)strlen(path);
+    snprintf(out, size, "%.*s%s", len, path, suffix);
+}
+
+static void write_csv(FILE *f, const Row *rows, int n)
+{
+    fprintf(f, "renderer,strategy,spp,seconds,rmse,relmse\n");
+    for (int i = 0; i < n; i++)
+        fprintf(f, "%s,%s,%.6g,%.9g,%.6e,%.6e\n", rows[i].renderer, rows[i].strategy, rows[i].spp,
+                rows[i].seconds, rows[i].rmse, rows[i].relmse);
+}
+
+/* Splits a CSV line (no quoting) in place into at most max fields; the count. */
+static int csv_fields(char *line, char **field, int max)
+{
+    int n = 0;
+    line[strcspn(line, "\r\n")] = 0;
+    for (char *p = line; n < max;) {
+        field[n++] = p;
+        p = strchr(p, ',');
+        if (!p)
+            break;
+        *p++ = 0;
+    }
+    return n;
+}
+
+static int cmp_group_then_spp(const void *x, const void *y)
+{
+    const Row *a = x, *b = y;
+    int c = strcmp(a->renderer, b->renderer);
+    c = c ? c : strcmp(a->strategy, b->strategy);
+    return c ? c : (a->spp > b->spp) - (a->spp < b->spp);
+}
+
+/* The anchors' rows (renderer,strategy,spp,seconds,rmse,relmse, columns by the header's names),
+ * each renderer/strategy contiguous and by spp. 0 with a message in err on failure. */
+static int read_anchors(const char *path, Row *rows, int max, int *n, char *err, size_t size)
+{
+    static const char *const names[6] = {"renderer", "strategy", "spp", "seconds", "rmse", "relmse"};
+    int col[6], line_no = 0;
+    char line[1024], *f[16];
+    FILE *in = fopen(path, "r");
+    *n = 0;
+    if (!in) {
+        snprintf(err, size, "%s: cannot open the anchors file", path);
+        return 0;
+    }
+    if (!fgets(line, sizeof line, in)) {
+        snprintf(err, size, "%s: empty file (want the header renderer,strategy,spp,seconds,rmse,relmse)", path);
+        fclose(in);
+        return 0;
+    }
+    line_no = 1;
+    int nf = csv_fields(line, f, 16);
+    for (int c = 0; c < 6; c++) {
+        col[c] = -1;
+        for (int k = 0; k < nf; k++)
+            if (strcmp(f[k], names[c]) == 0)
+                col[c] = k;
+        if (col[c] < 0) {
+            snprintf(err, size, "%s:1: no column '%s' in the header", path, names[c]);
+            fclose(in);
+            return 0;
+        }
+    }
+    while (fgets(line, sizeof line, in)) {
+        line_no++;
+        if (line[0] == '#' || line[strspn(line, " \t\r\n")] == 0)
+            continue;
+        Row *r = &rows[*n];
+        double *num[4] = {&r->spp, &r->seconds, &r->rmse, &r->relmse};
+        int ok = *n < max && csv_fields(line, f, 16) == nf;
+        for (int c = 2; ok && c < 6; c++) {
+            char *end;
+            *num[c - 2] = strtod(f[col[c]], &end);
+            ok = end != f[col[c]] && *end == 0 && isfinite(*num[c - 2]) && *num[c - 2] >= 0.0;
+        }
+        ok = ok && strlen(f[col[0]]) < sizeof r->renderer && strlen(f[col[1]]) < sizeof r->strategy;
+        if (!ok) {
+            snprintf(err, size, "%s:%d: not a row renderer,strategy,spp,seconds,rmse,relmse of numbers >= 0%s", path,
+                     line_no, *n < max ? "" : " (too many rows)");
+            fclose(in);
+            return 0;
+        }
+        strcpy(r->renderer, f[col[0]]);
+        strcpy(r->strategy, f[col[1]]);
+        (*n)++;
+    }
+    fclose(in);
+    qsort(rows, (size_t)*n, sizeof *rows, cmp_group_then_spp);
+    return 1;
+}
+
+/* ---- the plot ------------------------------------------------------------------------------ */
+
+/* s in a gnuplot single-quoted string (' doubled). */
+static void gp_quoted(FILE *f, const char *s)
+{
+    fputc('\'', f);
+    for (; *s; s++)
+        fputs(*s == '\'' ? "''" : (char[2]){*s, 0}, f);
+    fputc('\'', f);
+}
+
+/* One data block per renderer/strategy (points with seconds and relMSE > 0, which a log scale
+ * can show) and one plot clause for it; dashed for anchors. */
+static void plot_groups(FILE *dat, FILE *gp, const char *dat_path, const Row *rows, int n, int dashed,
+                        int *block)
+{
+    for (int i = 0; i < n; i += group_len(rows + i, n - i)) {
+        int k = group_len(rows + i, n - i), points = 0;
+        char title[80];
+        for (int j = i; j < i + k; j++)
+            points += rows[j].seconds > 0.0 && rows[j].relmse > 0.0;
+        if (points == 0)
+            continue;
+        fprintf(dat, "# %s %s\n", rows[i].renderer, rows[i].strategy);
+        for (int j = i; j < i + k; j++)
+            if (rows[j].seconds > 0.0 && rows[j].relmse > 0.0)
+                fprintf(dat, "%.9g %.9g %g\n", rows[j].seconds, rows[j].relmse, rows[j].spp);
+        fprintf(dat, "\n\n");
+        if (dashed)
+            snprintf(title, sizeof title, "%s %s", rows[i].renderer, rows[i].strategy);
+        else
+            snprintf(title, sizeof title, "%s", rows[i].strategy);
+        fputs(*block ? ", \\\n     " : "plot ", gp);
+        gp_quoted(gp, dat_path);
+        fprintf(gp, " index %d with linespoints %s title ", (*block)++, dashed ? "dt 2 lw 1.5 pt 6" : "lw 2 pt 7");
+        gp_quoted(gp, title);
+    }
+}
+
+/* Runs gnuplot on the script: 0 done, 127 gnuplot not found, else its failure. */
+static int run_gnuplot(const char *script)
+{
+    fflush(stdout);
+    fflush(stderr);
+    pid_t pid = fork();
+    if (pid < 0)
+        return -1;
+    if (pid == 0) {
+        execlp("gnuplot", "gnuplot", script, (char *)NULL);
+        _exit(127);
+    }
+    int status;
+    if (waitpid(pid, &status, 0) < 0)
+        return -1;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/* The log-log plot of relMSE against seconds: OUT.gp and OUT.dat, then gnuplot. Exit code. */
+static int write_plot(const Args *a, const char *title, const Row *rows, int n, const Row *anchors, int na)
+{
+    char gp_path[4096], dat_path[4096];
+    with_suffix(a->plot, ".gp", gp_path, sizeof gp_path);
+    with_suffix(a->plot, ".dat", dat_path, sizeof dat_path);
+    FILE *gp = fopen(gp_path, "w"), *dat = fopen(dat_path, "w");
+    if (!gp || !dat) {
+        fprintf(stderr, "refray bench: cannot write %s\n", gp ? dat_path : gp_path);
+        if (gp)
+            fclose(gp);
+        if (dat)
+            fclose(dat);
+        return 1;
+    }
+    int svg = strcmp(strrchr(a->plot, '.'), ".svg") == 0, block = 0;
+    fprintf(gp, "# refray bench: relMSE against run time; run: gnuplot %s\n", gp_path);
+    fprintf(gp, "set terminal %s noenhanced size 900,600\nset output ", svg ? "svg" : "pngcairo");
+    gp_quoted(gp, a->plot);
+    fprintf(gp, "\nset title ");
+    gp_quoted(gp, title);
+    fprintf(gp, "\nset xlabel 'seconds (median wall time of the render)'\nset ylabel 'relMSE'\n"
+                "set logscale xy\nset grid\nset key outside right top\nset format x '%%g'\n"
+                "set yrange [*<%g:*]\n"
+                "set format y '%%.0e'\n", TARGET / 3);
+    plot_groups(dat, gp, dat_path, rows, n, 0, &block);
+    plot_groups(dat, gp, dat_path, anchors, na, 1, &block);
+    fprintf(gp, "%s%g with lines dt 3 lw 1.5 lc rgb '#808080' title 'relMSE " TARGET_TEXT "'\n",
+            block ? ", \\\n     " : "plot ", TARGET);
+    int werr = ferror(gp) | ferror(dat);
+    werr |= fclose(gp) != 0;
+    werr |= fclose(dat) != 0;
+    if (werr) {
+        fprintf(stderr, "refray bench: cannot write %s or %s\n", gp_path, dat_path);
+        return 1;
+    }
+    int rc = run_gnuplot(gp_path);
+    if (rc == 127) {
+        printf("refray bench: gnuplot not found (apt-get install gnuplot-nox): wrote %s and %s, no plot\n", gp_path,
+               dat_path);
+        return 0;
+    }
+    if (rc != 0) {
+        fprintf(stderr, "refray bench: gnuplot failed on %s (exit %d)\n", gp_path, rc);
+        return 1;
+    }
+    printf("plot: %s (gnuplot script %s)\n", a->plot, gp_path);
+    return 0;
+}
+
+/* ---- the report ---------------------------------------------------------------------------- */
+
+static void print_table(const Row *rows, int n)
+{
+    printf("\n%-12s %8s %10s %10s %10s\n", "strategy", "spp", "seconds", "rmse", "relmse");
+    for (int i = 0; i < n; i++)
+        printf("%-12s %8.4g %10.4g %10.4g %10.4g\n", rows[i].strategy, rows[i].spp, rows[i].seconds, rows[i].rmse,
+               rows[i].relmse);
+}
+
+/* Time to the target per strategy, the winner and the anchors' ratios to it. */
+static void print_targets(const Row *rows, int n, const Row *anchors, int na)
+{
+    char text[160];
+    double best = NAN;
+    const char *winner = NULL;
+    printf("\ntime to relMSE " TARGET_TEXT " (log-log interpolated):\n");
+    for (int i = 0; i < n; i += group_len(rows + i, n - i)) {
+        double t = time_to_target(rows + i, group_len(rows + i, n - i), TARGET, text, sizeof text);
+        printf("  %-12s %s\n", rows[i].strategy, text);
+        if (!isnan(t) && (isnan(best) || t < best))
+            best = t, winner = rows[i].strategy;
+    }
+    if (winner)
+        printf("winner: %s (%.4g s to relMSE " TARGET_TEXT ")\n", winner, best);
+    else
+        printf("winner: none (no strategy reached relMSE " TARGET_TEXT ")\n");
+    if (na == 0)
+        return;
+    printf("\nanchors, time to relMSE " TARGET_TEXT " and anchor time / refray best:\n");
+    for (int i = 0; i < na; i += group_len(anchors + i, na - i)) {
+        char label[80];
+        double t = time_to_target(anchors + i, group_len(anchors + i, na - i), TARGET, text, sizeof text);
+        snprintf(label, sizeof label, "%s %s", anchors[i].renderer, anchors[i].strategy);
+        if (!isnan(t) && !isnan(best) && best > 0.0)
+            printf("  %-28s %-44s %.3gx\n", label, text, t / best);
+        else
+            printf("  %-28s %-44s -\n", label, text);
+    }
+}
+
+/* ---- the command --------------------------------------------------------------------------- */
+
+/* The reference: read (it must have the render's size) or rendered with ref_samples sobol samples
+ * and another seed, written beside the CSV. Exit code. */
+static int get_reference(const Args *a, const RfScene *scene, RfRenderOptions opt, int w, int h, RfImage *ref)
+{
+    char err[1024];
+    if (a->ref) {
+        if (rf_exr_read(a->ref, ref, err, sizeof err) != RF_OK) {
+            fprintf(stderr, "refray bench: %s\n", err);
+            return 1;
+        }
+        if (ref->width != w || ref->height != h || ref->channels < 3) {
+            fprintf(stderr, "refray bench: the reference %s is %dx%d with %d channel%s; the renders are %dx%d RGB\n",
+                    a->ref, ref->width, ref->height, ref->channels, ref->channels == 1 ? "" : "s", w, h);
+            rf_image_free(ref);
+            return 1;
+        }
+        printf("reference: %s\n", a->ref);
+        return 0;
+    }
+    RfRenderStats st;
+    opt.sampler = RF_SAMPLER_SOBOL, opt.adaptive = 0, opt.samples = a->ref_samples;
+    opt.seed = (uint64_t)a->seed + REF_SEED_OFFSET;
+    double t0 = now();
+    RfStatus s = rf_render(scene, &opt, ref, &st);
+    if (s != RF_OK) {
+        fprintf(stderr, "refray bench: %s: reference render: %s\n", a->scene, rf_status_str(s));
+        return 1;
+    }
+    printf("reference: %d spp sobol, seed %llu, rendered in %.3f s", a->ref_samples, (unsigned long long)opt.seed,
+           now() - t0);
+    if (a->csv) {
+        char path[4096], settings[128];
+        snprintf(settings, sizeof settings, "%dx%d, %d spp sobol, seed %llu (refray bench reference)", w, h,
+                 a->ref_samples, (unsigned long long)opt.seed);
+        RfImageAttr attr = {"refray:settings", settings};
+        with_suffix(a->csv, "_ref.exr", path, sizeof path);
+        if (rf_exr_write(path, ref, &attr, 1, err, sizeof err) != RF_OK) {
+            fprintf(stderr, "\nrefray bench: %s\n", err);
+            rf_image_free(ref);
+            return 1;
+        }
+        printf(", written to %s", path);
+    }
+    printf("\n");
+    return 0;
+}
+
+/* Every strategy at every sample count (adaptive: at depths 1..3): rows[], their count in *n.
+ * Exit code. */
+static int measure_all(const Args *a, const RfScene *scene, RfRenderOptions opt, const RfImage *ref, Row *rows,
+                       int *n)
+{
+    int total = 0;
+    for (int s = 0; s < a->nstrategies; s++)
+        total += a->strategy[s] == ADAPTIVE ? ADAPTIVE_DEPTHS : a->nspp;
+    *n = 0;
+    for (int s = 0; s < a->nstrategies; s++) {
+        int adaptive = a->strategy[s] == ADAPTIVE, count = adaptive ? ADAPTIVE_DEPTHS : a->nspp;
+        for (int k = 0; k < count; k++) {
+            Row *r = &rows[(*n)++];
+            RfImage img;
+            RfRenderStats st;
+            opt.adaptive = adaptive;
+            if (adaptive)
+                opt.adaptive_depth = k + 1, opt.samples = 1;
+            else
+                opt.sampler = a->strategy[s], opt.samples = a->spp[k];
+            RfStatus rs = render_measured(scene, &opt, a->runs, &r->seconds, &img, &st);
+            if (rs != RF_OK) {
+                fprintf(stderr, "refray bench: %s: %s: %s\n", a->scene, strategy_name(a->strategy[s]),
+                        rf_status_str(rs));
+                return 1;
+            }
+            snprintf(r->renderer, sizeof r->renderer, "refray");
+            snprintf(r->strategy, sizeof r->strategy, "%s", strategy_name(a->strategy[s]));
+            r->spp = adaptive ? (double)st.primary_rays / ((double)st.width * st.height) : opt.samples;
+            int ok = image_errors(&img, ref, &r->rmse, &r->relmse);
+            rf_image_free(&img);
+            if (!ok) {
+                fprintf(stderr, "refray bench: the image and the reference differ in size\n");
+                return 1;
+            }
+            if (!a->quiet) {
+                fprintf(stderr, "refray bench: [%d/%d] %s", *n, total, r->strategy);
+                if (adaptive)
+                    fprintf(stderr, " depth %d", k + 1);
+                fprintf(stderr, " %.4g spp: %.4g s, relMSE %.4g\n", r->spp, r->seconds, r->relmse);
+            }
+        }
+    }
+    return 0;
+}
+
+int rf_cmd_bench(int argc, char **argv)
+{
+    Args a;
+    int rc = parse_args(argc, argv, &a);
+    if (rc)
+        return rc == 1 ? 0 : 2;
+
+    static Row rows[MAX_STRATEGIES * MAX_SPP], anchors[MAX_ANCHOR_ROWS];
+    int n = 0, na = 0;
+    char err[1024];
+    if (a.anchors && !read_anchors(a.anchors, anchors, MAX_ANCHOR_ROWS, &na, err, sizeof err)) {
+        fprintf(stderr, "refray bench: %s\n", err);
+        return 1;
+    }
+    RfScene scene;
+    RfLoadOptions lopt = rf_load_options_default();
+    rf_scene_init(&scene);
+    if (rf_scene_load(a.scene, &lopt, &scene, err, sizeof err) != RF_OK) {
+        fprintf(stderr, "%s\n", err);
+        return 1;
+    }
+    int w = a.width > 0 ? a.width : scene.render.width, h = a.height > 0 ? a.height : scene.render.height;
+    if ((double)w * (double)h > (double)RF_IMAGE_MAX_PIXELS) {
+        fprintf(stderr, "refray bench: %d x %d pixels is more than the %zu an image may have\n", w, h,
+                (size_t)RF_IMAGE_MAX_PIXELS);
+        rf_scene_free(&scene);
+        return 2;
+    }
+    FILE *csv = a.csv ? fopen(a.csv, "w") : NULL; /* opened first: a bad path fails before the renders */
+    if (a.csv && !csv) {
+        fprintf(stderr, "refray bench: cannot write %s\n", a.csv);
+        rf_scene_free(&scene);
+        return 1;
+    }
+    RfRenderOptions opt = rf_render_options_default();
+    opt.width = w, opt.height = h, opt.threads = a.threads, opt.light_samples = a.light_samples;
+    opt.seed = (uint64_t)a.seed;
+    printf("refray bench: %s %dx%d, median of %d run%s, seed %d\n", a.scene, w, h, a.runs, a.runs == 1 ? "" : "s",
+           a.seed);
+    RfImage ref = {0, 0, 0, NULL};
+    rc = get_reference(&a, &scene, opt, w, h, &ref);
+    if (rc == 0)
+        rc = measure_all(&a, &scene, opt, &ref, rows, &n);
+    rf_image_free(&ref);
+    rf_scene_free(&scene);
+    if (rc == 0) {
+        print_table(rows, n);
+        print_targets(rows, n, anchors, na);
+    }
+    if (csv) {
+        if (rc == 0)
+            write_csv(csv, rows, n);
+        if ((ferror(csv) | fclose(csv)) != 0 && rc == 0) {
+            fprintf(stderr, "refray bench: cannot write %s\n", a.csv);
+            rc = 1;
+        }
+        if (rc == 0)
+            printf("csv: %s\n", a.csv);
+        else
+            remove(a.csv); /* no partial table */
+    }
+    if (rc == 0 && a.plot) {
+        char title[512];
+        const char *base = strrchr(a.scene, '/');
+        snprintf(title, sizeof title, "refray bench: %s, %dx%d", base ? base + 1 : a.scene, w, h);
+        rc = write_plot(&a, title, rows, n, anchors, na);
+    }
+    return rc;
+}
