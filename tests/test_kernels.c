@@ -3,6 +3,7 @@
  * scenes, at 1 and 4 samples and in --local mode; the choice leaves out what a scene does not
  * need, and refuses a kernel that lacks what it needs. */
 #include <glob.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -80,25 +81,35 @@ static void t_kernels_choice(void)
     char err[512], name[256];
     RfRenderOptions o = rf_render_options_default();
     RF_CHECK_EQ_INT(rf_scene_load("scenes/spd/tree.nff", NULL, &s, err, sizeof err), RF_OK);
-    /* the tree has no highlights (ks = 0 everywhere): the kernel without them, at any sample count */
-    RF_CHECK_STR(rf_kernel_name(rf_render_kernel(&s, &o), name, sizeof name), "general-specular");
+    /* the tree has no highlights (ks = 0 everywhere) and no §3.10 parts: the kernel without
+     * them, at any sample count */
+    RF_CHECK_STR(rf_kernel_name(rf_render_kernel(&s, &o), name, sizeof name), "general-specular-area-lens-motion-glossy");
     o.samples = 4;
-    RF_CHECK_STR(rf_kernel_name(rf_render_kernel(&s, &o), name, sizeof name), "general-specular");
+    RF_CHECK_STR(rf_kernel_name(rf_render_kernel(&s, &o), name, sizeof name), "general-specular-area-lens-motion-glossy");
     /* an exponent beyond 1e15 counts as a highlight even with ks = 0: (r.v)^n may overflow */
     RF_CHECK(!rf_material_has_highlight(&s.materials[0]));
     s.materials[0].shininess = 1e16;
     RF_CHECK(rf_material_has_highlight(&s.materials[0]));
+    RF_CHECK_STR(rf_kernel_name(rf_render_kernel(&s, &o), name, sizeof name), "general-area-lens-motion-glossy");
+    /* a lens from the options needs the lens part */
+    o.aperture = 0.05;
+    o.focus = 3.0;
     RF_CHECK_STR(rf_kernel_name(rf_render_kernel(&s, &o), name, sizeof name), "general");
+    o.aperture = NAN;
+    o.focus = NAN;
+    rf_scene_free(&s);
+    RF_CHECK_EQ_INT(rf_scene_load("scenes/soft.rf", NULL, &s, err, sizeof err), RF_OK);
+    RF_CHECK_STR(rf_kernel_name(rf_render_kernel(&s, &o), name, sizeof name), "general-specular");
     rf_scene_free(&s);
     RF_CHECK_EQ_INT(rf_scene_load("scenes/whitted.rf", NULL, &s, err, sizeof err), RF_OK);
     o.samples = 1;
-    RF_CHECK_STR(rf_kernel_name(rf_render_kernel(&s, &o), name, sizeof name), "general");
+    RF_CHECK_STR(rf_kernel_name(rf_render_kernel(&s, &o), name, sizeof name), "general-area-lens-motion-glossy");
     /* a kernel without highlights cannot render the red sphere's */
     RfImage img;
     RfRenderStats st;
     o.width = 16;
     o.height = 12;
-    o.kernel = rf_kernel_parse("general-specular");
+    o.kernel = rf_kernel_parse("general-specular-area-lens-motion-glossy");
     RF_CHECK(o.kernel != 0);
     RF_CHECK_EQ_INT(rf_render(&s, &o, &img, &st), RF_ERR_DOMAIN);
     rf_scene_free(&s);

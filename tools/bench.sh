@@ -172,6 +172,9 @@ spec() {
     c=$(med "$runs" rtrace "$@" --threads 1)
     printf "%-34s %-44s %9.3f %9.3f %7.3fx\n" "$name" "$k" "$g" "$c" "$(awk -v g=$g -v c=$c 'BEGIN{print g/c}')"
 }
+spec "whitted (no §3.10 parts)" scenes/whitted.rf
+spec "whitted 16 spp (no §3.10 parts)" scenes/whitted.rf --samples 16
+spec "balls (no §3.10 parts)" scenes/spd/balls.nff
 spec "tree (no highlights)" scenes/spd/tree.nff
 spec "tetra (no highlights)" scenes/spd/tetra.nff
 spec "torus.obj (no highlights)" scenes/torus.obj

@@ -13,15 +13,20 @@ PARTS = ["SHADOW", "SECONDARY", "FRESNEL", "SPECULAR", "AMBIENT", "EMISSION", "S
 BIT = {p: 1 << i for i, p in enumerate(PARTS)}
 ALL = (1 << len(PARTS)) - 1
 # the parts whose absence measurably saves work (instruction counts, docs/performance.md)
-SPECIALISED = sys.argv[1:] or ["SPECULAR"]
+# (a group "A+B" is left out as a whole: the parts of distributed ray tracing, §3.10)
+SPECIALISED = sys.argv[1:] or ["SPECULAR", "AREA+LENS+MOTION+GLOSSY"]
+
+
+def bits(group):
+    return sum(BIT[p] for p in group.split("+"))
 
 
 def sets():
     out = {ALL}
-    fixed = ALL & ~sum(BIT[p] for p in SPECIALISED)
+    fixed = ALL & ~sum(bits(g) for g in SPECIALISED)
     for n in range(len(SPECIALISED) + 1):
         for combo in itertools.combinations(SPECIALISED, n):
-            s = fixed | sum(BIT[p] for p in combo)
+            s = fixed | sum(bits(g) for g in combo)
             if not s & BIT["SECONDARY"]:  # Fresnel weighs secondary rays: none, no Fresnel
                 s &= ~BIT["FRESNEL"]
             out.add(s)
