@@ -551,16 +551,27 @@ static void t_uniform_grid(void)
     /* n = 6: a = 2 columns, b = 3 rows; n = 5: the same grid, the last row holds one point */
     for (uint64_t px = 0; px < 5; px++) {
         double p[2];
-        rf_sample_2d(RF_SAMPLER_UNIFORM, 5, 6, px, 2, px * 13, p);
+        rf_sample_2d(RF_SAMPLER_UNIFORM, 5, 6, px, 0, px * 13, p);
         RF_CHECK(p[0] == 0.75 && p[1] == 2.5 / 3.0);
         rf_sample_2d(RF_SAMPLER_UNIFORM, 4, 5, px, 0, 1, p);
         RF_CHECK(p[0] == 0.25 && p[1] == 2.5 / 3.0);
         rf_sample_2d(RF_SAMPLER_UNIFORM, 0, 1, px, 0, 1, p);
         RF_CHECK(p[0] == 0.5 && p[1] == 0.5);
+        /* the pixel position (dimension 0): cell k in every pixel; another dimension: every cell
+         * centre once, in an order of its own */
+        int cells[16] = {0}, moved = 0;
         for (uint32_t k = 0; k < 16; k++) {
-            rf_sample_2d(RF_SAMPLER_UNIFORM, k, 16, px, 1, 99, p);
+            rf_sample_2d(RF_SAMPLER_UNIFORM, k, 16, px, 0, 99, p);
             RF_CHECK(p[0] == ((k % 4) + 0.5) / 4.0 && p[1] == ((k / 4) + 0.5) / 4.0);
+            rf_sample_2d(RF_SAMPLER_UNIFORM, k, 16, px, 1, 99, p);
+            int cx = (int)(p[0] * 4), cy = (int)(p[1] * 4);
+            RF_CHECK(p[0] == (cx + 0.5) / 4.0 && p[1] == (cy + 0.5) / 4.0);
+            cells[cy * 4 + cx]++;
+            moved += cy * 4 + cx != (int)k;
         }
+        for (int c = 0; c < 16; c++)
+            RF_CHECK_EQ_INT(cells[c], 1);
+        RF_CHECK(moved > 0);
         RF_CHECK(rf_sample_1d(RF_SAMPLER_UNIFORM, 2, 8, px, 0, 0) == 2.5 / 8.0);
     }
 }

@@ -258,7 +258,7 @@ static double time_to_target(const Row *rows, int n, double target, char *text, 
         return NAN;
     }
     if (rows[0].relmse <= target) {
-        snprintf(text, size, "%.4g s (below at the first row, %g spp)", rows[0].seconds, rows[0].spp);
+        snprintf(text, size, "%.4g s (below at the first row, %.4g spp)", rows[0].seconds, rows[0].spp);
         return rows[0].seconds;
     }
     for (int i = 0; i + 1 < n; i++) {
@@ -269,11 +269,11 @@ static double time_to_target(const Row *rows, int n, double target, char *text, 
                 double f = (log(target) - log(a->relmse)) / (log(b->relmse) - log(a->relmse));
                 t = exp(log(a->seconds) + f * (log(b->seconds) - log(a->seconds)));
             }
-            snprintf(text, size, "%.4g s (between %g and %g spp)", t, a->spp, b->spp);
+            snprintf(text, size, "%.4g s (between %.4g and %.4g spp)", t, a->spp, b->spp);
             return t;
         }
     }
-    snprintf(text, size, "not reached (relMSE %.3g at %g spp)", rows[n - 1].relmse, rows[n - 1].spp);
+    snprintf(text, size, "not reached (relMSE %.3g at %.4g spp)", rows[n - 1].relmse, rows[n - 1].spp);
     return NAN;
 }
 

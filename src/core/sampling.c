@@ -171,10 +171,14 @@ void rf_sample_2d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_t 
         n = 1;
     switch (s) {
     case RF_SAMPLER_UNIFORM: {
+        /* the grid's cell centres; dimensions other than the pixel position take them in a
+         * shuffled order, as the stratified sampler does, or sample k would put its lens and
+         * light points on the same cell as its pixel offset in every pixel (a bias that never
+         * averages out) */
         uint32_t a = rf_isqrt(n), b = n / a + (n % a != 0);
-        k %= n;
-        out[0] = ((double)(k % a) + 0.5) / (double)a;
-        out[1] = ((double)(k / a) + 0.5) / (double)b;
+        uint32_t c = rf_cell(k % n, n, pixel, dimension, seed);
+        out[0] = ((double)(c % a) + 0.5) / (double)a;
+        out[1] = ((double)(c / a) + 0.5) / (double)b;
         return;
     }
     case RF_SAMPLER_STRATIFIED: {
@@ -217,7 +221,7 @@ double rf_sample_1d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_
         n = 1;
     switch (s) {
     case RF_SAMPLER_UNIFORM:
-        return ((double)(k % n) + 0.5) / (double)n;
+        return ((double)rf_cell(k % n, n, pixel, dimension, seed) + 0.5) / (double)n;
     case RF_SAMPLER_STRATIFIED: {
         k %= n;
         double u = rf_rng_uniform(pixel, k, du, seed);
