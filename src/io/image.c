@@ -1,4 +1,5 @@
-/* Float images: allocation, reading by signature, and the write-then-rename helper. */
+/* Float images: allocation, the write-then-rename helper and the error helpers that the EXR and
+ * PNG readers and writers share (reading by signature is read.c, above them). */
 #include "io_internal.h"
 
 #include <errno.h>
@@ -85,39 +86,6 @@ RfStatus rf_io_check_image(const RfImage *img, const char *path, char *err, size
         return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "unsupported image size %dx%d", img->width,
                           img->height);
     return RF_OK;
-}
-
-/* ---- reading ---- */
-
-RfStatus rf_image_read(const char *path, RfPngOptions png_decode, RfImage *img, char *err, size_t err_size)
-{
-    static const unsigned char exr_magic[4] = {0x76, 0x2f, 0x31, 0x01};
-    static const unsigned char png_magic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    unsigned char sig[8];
-    size_t n;
-    FILE *fp;
-
-    if (!img)
-        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no image to read into");
-    img->width = img->height = img->channels = 0;
-    img->data = NULL;
-    if (!path)
-        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no input path");
-    fp = fopen(path, "rb");
-    if (!fp)
-        return rf_io_fail_errno(RF_ERR_IO, err, err_size, path, "cannot open", errno);
-    n = fread(sig, 1, sizeof sig, fp);
-    if (n < sizeof sig && ferror(fp)) {
-        int e = errno;
-        fclose(fp);
-        return rf_io_fail_errno(RF_ERR_IO, err, err_size, path, "cannot read", e);
-    }
-    fclose(fp);
-    if (n >= sizeof exr_magic && memcmp(sig, exr_magic, sizeof exr_magic) == 0)
-        return rf_exr_read(path, img, err, err_size);
-    if (n == sizeof png_magic && memcmp(sig, png_magic, sizeof png_magic) == 0)
-        return rf_png_read(path, png_decode, img, err, err_size);
-    return rf_io_fail(RF_ERR_PARSE, err, err_size, path, "not an OpenEXR or PNG file (unknown signature)");
 }
 
 /* ---- atomic writes ---- */

@@ -42,14 +42,6 @@ typedef struct {
     size_t coloured_cap;
 } NffReader;
 
-RfLoadOptions rf_load_options_default(void)
-{
-    RfLoadOptions o;
-    o.nff_fov = RF_FOV_PIXEL_CENTRES;
-    o.crease_angle = 60.0;
-    return o;
-}
-
 static RfSrcLoc loc_of(const RfToken *t)
 {
     RfSrcLoc l;

@@ -1,6 +1,10 @@
-/* refray: helpers shared by the scene readers (internal; implemented in load.c). */
+/* refray: helpers shared by the scene model and its readers (internal): rf__msgf and the
+ * polygon measure in scene.c, the whole-scene checks in scene_check.c, the reader steps in
+ * reader.c. */
 #ifndef RF_SCENE_READER_H
 #define RF_SCENE_READER_H
+
+#include <math.h>
 
 #include "lexer.h"
 #include "refray/scene.h"
@@ -12,6 +16,13 @@ RfStatus rf__msgf(char *msg, size_t msgsz, RfStatus st, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)))
 #endif
     ;
+
+/* Finite coordinates; finite and non-negative channels. */
+static inline int rf__finite3(RfVec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
+static inline int rf__nonneg_rgb(RfRgb c)
+{
+    return isfinite(c.r) && isfinite(c.g) && isfinite(c.b) && c.r >= 0.0 && c.g >= 0.0 && c.b >= 0.0;
+}
 
 /* Twice the vector area of a polygon (the sum of the fan's cross products about v[0]; equal to
  * Newell's normal) and the largest squared distance of a vertex from v[0]: what the model's
@@ -34,8 +45,10 @@ RfStatus rf__reader_default_material(RfLexer *lx, RfScene *scene, const RfToken 
 RfStatus rf__reader_finish(RfLexer *lx, RfScene *scene, RfStatus st);
 
 /* A whole file (a trailing .gz decompressed) into a malloc'd buffer; on failure err gets
- * "path:1:1: cannot open: ..." (load.c). */
+ * "path:1:1: cannot open: ..." (reader.c). */
 RfStatus rf__reader_read_file(const char *path, char **text, size_t *len, char *err, size_t errsz);
+/* Do the first n bytes of s end with suffix? */
+int rf__ends_with(const char *s, size_t n, const char *suffix);
 /* rel resolved against the folder of the file `base` (rel itself when absolute); 0 when it
  * does not fit into n bytes. */
 int rf__reader_relative_path(const char *base, const char *rel, size_t rel_len, char *out, size_t n);

@@ -2,7 +2,6 @@
  * (scene.h). */
 #include "refray/scene.h"
 #include "reader.h"
-#include "refray/bvh.h" /* RfAabb */
 #include "refray/numeric.h"
 #include "refray/transform.h"
 
@@ -25,9 +24,6 @@ RfStatus rf__msgf(char *msg, size_t msgsz, RfStatus st, const char *fmt, ...)
     return st;
 }
 
-static int finite3(RfVec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
-static int finite_rgb(RfRgb c) { return isfinite(c.r) && isfinite(c.g) && isfinite(c.b); }
-static int nonneg_rgb(RfRgb c) { return finite_rgb(c) && c.r >= 0.0 && c.g >= 0.0 && c.b >= 0.0; }
 static int positive(RfRgb c) { return c.r > 0.0 || c.g > 0.0 || c.b > 0.0; }
 
 /* ---- allocation --------------------------------------------------------------------------- */
@@ -289,7 +285,7 @@ RfStatus rf_scene_check_primitive(const RfScene *scene, const RfPrimitive *p, ch
         return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "%s has no valid material", name);
     switch (p->type) {
     case RF_PRIM_SPHERE:
-        if (!finite3(p->u.sphere.center) || !isfinite(p->u.sphere.radius))
+        if (!rf__finite3(p->u.sphere.center) || !isfinite(p->u.sphere.radius))
             return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "sphere: values must be finite");
         if (!(p->u.sphere.radius > 0.0))
             return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE,
@@ -297,7 +293,7 @@ RfStatus rf_scene_check_primitive(const RfScene *scene, const RfPrimitive *p, ch
                         p->u.sphere.radius);
         return RF_OK;
     case RF_PRIM_PLANE:
-        if (!finite3(p->u.plane.normal) || !isfinite(p->u.plane.offset))
+        if (!rf__finite3(p->u.plane.normal) || !isfinite(p->u.plane.offset))
             return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "plane: values must be finite");
         if (!(rf_vec3_length(p->u.plane.normal) > 0.0))
             return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE, "degenerate plane: zero normal vector");
@@ -312,7 +308,7 @@ RfStatus rf_scene_check_primitive(const RfScene *scene, const RfPrimitive *p, ch
             return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "%s: vertex range out of bounds", name);
         const RfVec3 *v = scene->vertices + p->u.poly.first;
         for (int i = 0; i < n; i++)
-            if (!finite3(v[i]))
+            if (!rf__finite3(v[i]))
                 return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "%s: vertex %d is not finite", name, i + 1);
         double ext2;
         RfVec3 nv = rf__polygon_area_vector(v, n, &ext2);
@@ -325,7 +321,7 @@ RfStatus rf_scene_check_primitive(const RfScene *scene, const RfPrimitive *p, ch
                 return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "%s: normal range out of bounds", name);
             const RfVec3 *vn = scene->normals + p->u.poly.nfirst;
             for (int i = 0; i < n; i++)
-                if (!finite3(vn[i]) || !(rf_vec3_length(vn[i]) > 0.0))
+                if (!rf__finite3(vn[i]) || !(rf_vec3_length(vn[i]) > 0.0))
                     return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE,
                                 "%s: normal of vertex %d has zero length", name, i + 1);
         }
@@ -333,7 +329,7 @@ RfStatus rf_scene_check_primitive(const RfScene *scene, const RfPrimitive *p, ch
     }
     case RF_PRIM_CONE: {
         double rb = p->u.cone.base_radius, ra = p->u.cone.apex_radius;
-        if (!finite3(p->u.cone.base) || !finite3(p->u.cone.apex) || !isfinite(rb) || !isfinite(ra))
+        if (!rf__finite3(p->u.cone.base) || !rf__finite3(p->u.cone.apex) || !isfinite(rb) || !isfinite(ra))
             return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "cone: values must be finite");
         if (rb < 0.0 || ra < 0.0)
             return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "cone radii must be >= 0");
@@ -391,7 +387,7 @@ RfStatus rf_scene_add_primitive(RfScene *scene, const RfPrimitive *p, char *msg,
 RfStatus rf_scene_camera_check(const RfSceneCamera *cam, RfSrcLoc *loc, char *msg, size_t msgsz)
 {
     *loc = cam->loc;
-    if (!finite3(cam->eye) || !finite3(cam->target) || !finite3(cam->up))
+    if (!rf__finite3(cam->eye) || !rf__finite3(cam->target) || !rf__finite3(cam->up))
         return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "camera: values must be finite");
     RfVec3 dir = rf_vec3_sub(cam->target, cam->eye);
     double ld = rf_vec3_length(dir), lu = rf_vec3_length(cam->up);
@@ -446,84 +442,11 @@ RfWindow rf_scene_camera_window(const RfSceneCamera *cam, int width, int height)
     return w;
 }
 
-static RfStatus check_light(const RfLight *l, char *msg, size_t msgsz)
-{
-    if (!finite3(l->position) || !finite3(l->direction) || !nonneg_rgb(l->intensity))
-        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "light: values must be finite, intensity >= 0");
-    if (l->kind != RF_LIGHT_POINT && l->kind != RF_LIGHT_SPHERE && !(rf_vec3_length(l->direction) > 0.0))
-        return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE, "light: direction has zero length");
-    if (rf_light_is_area(l->kind)) {
-        if (!finite3(l->edge1) || !finite3(l->edge2) || !isfinite(l->radius))
-            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "area light: values must be finite");
-        if (l->samples < 1 || l->samples > 1 << 16)
-            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "area light: samples must be in [1, 65536]");
-        if (!(rf_light_area(l) > 0.0) || !isfinite(rf_light_area(l)))
-            return rf__msgf(msg, msgsz, RF_ERR_DEGENERATE, "area light: its area must be > 0");
-    }
-    if (l->kind == RF_LIGHT_SPOT && (!(l->spot_cutoff > 0.0 && l->spot_cutoff <= 90.0) ||
-                                     !(l->spot_exponent >= 0.0) || !isfinite(l->spot_exponent)))
-        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN,
-                    "spot light: cutoff must be in (0, 90] degrees, exponent >= 0");
-    return RF_OK;
-}
-
-static RfStatus check_material(const RfMaterial *m, char *msg, size_t msgsz)
-{
-    const RfRgb *c[] = {&m->ka, &m->kd, &m->ks, &m->kr, &m->kt, &m->emission};
-    for (size_t i = 0; i < sizeof c / sizeof c[0]; i++)
-        if (!nonneg_rgb(*c[i]))
-            return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "material: coefficients must be finite, >= 0");
-    if (!(m->shininess >= 0.0) || !isfinite(m->shininess) || !(m->ior > 0.0) || !isfinite(m->ior))
-        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "material: needs shininess >= 0 and ior > 0");
-    if (!(m->gloss >= 0.0) || !isfinite(m->gloss))
-        return rf__msgf(msg, msgsz, RF_ERR_DOMAIN, "material: needs gloss >= 0");
-    return RF_OK;
-}
-
 int rf_material_has_highlight(const RfMaterial *m)
 {
     /* r.v <= 1 + 10u for unit n, l, v, so pow(r.v, n) <= e^1.1 for n <= 1e15: with ks = 0 the
      * term is then (0 * I) * finite, a zero of the same sign as with pow replaced by 0 */
     return positive(m->ks) || m->shininess > 1e15;
-}
-
-static RfStatus located(char *err, size_t errsz, const char *source, RfSrcLoc loc,
-                        const char *msg, RfStatus st)
-{
-    snprintf(err, errsz, "%s:%d:%d: %s", source ? source : "<scene>", loc.line, loc.col, msg);
-    return st;
-}
-
-RfStatus rf_scene_validate(const RfScene *scene, const char *source, char *err, size_t errsz)
-{
-    char msg[256];
-    RfSrcLoc loc = {1, 1};
-    RfStatus st;
-    const RfRenderSettings *r = &scene->render;
-    if (!scene->has_camera)
-        return located(err, errsz, source, loc, "the scene has no camera", RF_ERR_DOMAIN);
-    if ((st = rf_scene_camera_check(&scene->camera, &loc, msg, sizeof msg)))
-        return located(err, errsz, source, loc, msg, st);
-    if (r->width < 1 || r->height < 1 || r->max_depth < 1 || r->samples < 1 ||
-        !(r->min_contribution >= 0.0 && r->min_contribution <= 1.0) || !nonneg_rgb(r->background) ||
-        !nonneg_rgb(r->ambient) || (unsigned)r->sampler >= RF_SAMPLER_COUNT ||
-        (unsigned)r->filter.kind >= RF_FILTER_COUNT || !(r->filter.radius > 0.0 && r->filter.radius <= 16.0) ||
-        !(r->filter.sigma > 0.0 || r->filter.kind != RF_FILTER_GAUSSIAN) || !(r->adaptive_threshold >= 0.0) ||
-        r->adaptive_depth < 0 || r->adaptive_depth > 8 || !isfinite(r->shutter_open) ||
-        !isfinite(r->shutter_close) || !(r->shutter_open <= r->shutter_close))
-        return located(err, errsz, source, loc, "render settings out of range", RF_ERR_DOMAIN);
-    for (size_t i = 0; i < scene->material_count; i++)
-        if ((st = check_material(&scene->materials[i], msg, sizeof msg)))
-            return located(err, errsz, source, scene->materials[i].loc, msg, st);
-    for (size_t i = 0; i < scene->light_count; i++)
-        if ((st = check_light(&scene->lights[i], msg, sizeof msg)))
-            return located(err, errsz, source, scene->lights[i].loc, msg, st);
-    for (size_t i = 0; i < scene->prim_count; i++)
-        if ((st = rf_scene_check_primitive(scene, &scene->prims[i], msg, sizeof msg)))
-            return located(err, errsz, source, scene->prims[i].loc, msg, st);
-    if ((st = rf_scene_graph_check(scene, &loc, msg, sizeof msg)))
-        return located(err, errsz, source, loc, msg, st);
-    return RF_OK;
 }
 
 /* ---- analysis ---------------------------------------------------------------------------- */
@@ -625,59 +548,4 @@ const char *rf_light_kind_name(RfLightKind kind)
     case RF_LIGHT_KIND_COUNT: break;
     }
     return "light";
-}
-
-static void grow_box(RfVec3 *lo, RfVec3 *hi, RfVec3 c, double r)
-{
-    RfAabb b = {rf_vec3(c.x - r, c.y - r, c.z - r), rf_vec3(c.x + r, c.y + r, c.z + r)};
-    RfAabb a = {*lo, *hi};
-    a = rf_aabb_union(a, b);
-    *lo = a.lo;
-    *hi = a.hi;
-}
-
-int rf_scene_bounds(const RfScene *scene, RfVec3 *lo, RfVec3 *hi)
-{
-    *lo = rf_vec3(INFINITY, INFINITY, INFINITY);
-    *hi = rf_vec3(-INFINITY, -INFINITY, -INFINITY);
-    int any = 0;
-    for (size_t i = 0; i < scene->prim_count; i++) {
-        const RfPrimitive *p = &scene->prims[i];
-        if (p->flags & RF_PRIM_IN_OBJECT) /* seen only through instances */
-            continue;
-        switch (p->type) {
-        case RF_PRIM_INSTANCE: {
-            RfVec3 ol, oh;
-            const RfInstance *in = &scene->instances[p->u.instance];
-            if (!rf_scene_object_bounds(scene, in->object, &ol, &oh))
-                break;
-            for (int c = 0; c < 8; c++) { /* the 8 corners of the object box */
-                RfVec3 k = rf_vec3(c & 1 ? oh.x : ol.x, c & 2 ? oh.y : ol.y, c & 4 ? oh.z : ol.z);
-                if (rf_transform_point(in->to_world, k, &k) == RF_OK)
-                    grow_box(lo, hi, k, 0.0);
-            }
-            any = 1;
-            break;
-        }
-        case RF_PRIM_SPHERE:
-            grow_box(lo, hi, p->u.sphere.center, p->u.sphere.radius);
-            any = 1;
-            break;
-        case RF_PRIM_TRIANGLE:
-        case RF_PRIM_POLYGON:
-            for (int k = 0; k < p->u.poly.count; k++)
-                grow_box(lo, hi, scene->vertices[p->u.poly.first + (size_t)k], 0.0);
-            any = 1;
-            break;
-        case RF_PRIM_CONE:
-            grow_box(lo, hi, p->u.cone.base, p->u.cone.base_radius);
-            grow_box(lo, hi, p->u.cone.apex, p->u.cone.apex_radius);
-            any = 1;
-            break;
-        case RF_PRIM_PLANE:
-        case RF_PRIM_TYPE_COUNT:
-            break;
-        }
-    }
-    return any;
 }

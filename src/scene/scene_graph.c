@@ -10,6 +10,7 @@
 
 #include "refray/scene.h"
 #include "reader.h"
+#include "refray/bvh.h" /* RfAabb */
 #include "refray/transform.h"
 
 
@@ -344,4 +345,61 @@ RfStatus rf_scene_flatten(const RfScene *scene, RfScene *out, char *msg, size_t 
     if (st)
         rf_scene_free(out);
     return st;
+}
+
+/* ---- world bounds ---- */
+
+static void grow_box(RfVec3 *lo, RfVec3 *hi, RfVec3 c, double r)
+{
+    RfAabb b = {rf_vec3(c.x - r, c.y - r, c.z - r), rf_vec3(c.x + r, c.y + r, c.z + r)};
+    RfAabb a = {*lo, *hi};
+    a = rf_aabb_union(a, b);
+    *lo = a.lo;
+    *hi = a.hi;
+}
+
+int rf_scene_bounds(const RfScene *scene, RfVec3 *lo, RfVec3 *hi)
+{
+    *lo = rf_vec3(INFINITY, INFINITY, INFINITY);
+    *hi = rf_vec3(-INFINITY, -INFINITY, -INFINITY);
+    int any = 0;
+    for (size_t i = 0; i < scene->prim_count; i++) {
+        const RfPrimitive *p = &scene->prims[i];
+        if (p->flags & RF_PRIM_IN_OBJECT) /* seen only through instances */
+            continue;
+        switch (p->type) {
+        case RF_PRIM_INSTANCE: {
+            RfVec3 ol, oh;
+            const RfInstance *in = &scene->instances[p->u.instance];
+            if (!rf_scene_object_bounds(scene, in->object, &ol, &oh))
+                break;
+            for (int c = 0; c < 8; c++) { /* the 8 corners of the object box */
+                RfVec3 k = rf_vec3(c & 1 ? oh.x : ol.x, c & 2 ? oh.y : ol.y, c & 4 ? oh.z : ol.z);
+                if (rf_transform_point(in->to_world, k, &k) == RF_OK)
+                    grow_box(lo, hi, k, 0.0);
+            }
+            any = 1;
+            break;
+        }
+        case RF_PRIM_SPHERE:
+            grow_box(lo, hi, p->u.sphere.center, p->u.sphere.radius);
+            any = 1;
+            break;
+        case RF_PRIM_TRIANGLE:
+        case RF_PRIM_POLYGON:
+            for (int k = 0; k < p->u.poly.count; k++)
+                grow_box(lo, hi, scene->vertices[p->u.poly.first + (size_t)k], 0.0);
+            any = 1;
+            break;
+        case RF_PRIM_CONE:
+            grow_box(lo, hi, p->u.cone.base, p->u.cone.base_radius);
+            grow_box(lo, hi, p->u.cone.apex, p->u.cone.apex_radius);
+            any = 1;
+            break;
+        case RF_PRIM_PLANE:
+        case RF_PRIM_TYPE_COUNT:
+            break;
+        }
+    }
+    return any;
 }
