@@ -10,6 +10,10 @@
 #     POV-Ray translations in scenes/spd/pov/, depth 5, 1 spp), trace times, 1 and 2 threads.
 #  5. the specialised render kernels: each one's speed-up over the general kernel on scenes that
 #     do not need what it leaves out.
+#  6. run time against error on `soft` (SCENES.md section 3): `refray bench` for every sampling
+#     strategy, the anchors (Mitsuba 3 when pip can install it, POV-Ray) by tools/anchor_soft.py,
+#     side by side; the references are cached in scenes/bench/data/ (git-ignored); the plot goes
+#     to out/bench/soft_bench.png.
 # Usage: tools/bench.sh [refray] [refray-mesh-bench] [refray-make-mesh]; RUNS=n (default 3).
 set -e
 bin=${1:-build/refray}
@@ -180,3 +184,29 @@ spec "tetra (no highlights)" scenes/spd/tetra.nff
 spec "torus.obj (no highlights)" scenes/torus.obj
 spec "mesh (no highlights)" scenes/bench/mesh.rf
 echo "reproduce: $bin render SCENE -o out.exr --threads 1 [--kernel general]; $bin info SCENE names the kernel"
+
+# ---- 6. run time against error on soft ---------------------------------------------------------
+echo
+echo "== 6. run time against error: soft 512x512 (SCENES.md section 3), time to relMSE 1e-3"
+data=scenes/bench/data
+mkdir -p "$data" out/bench
+ref=$data/soft_ref.exr
+if [ ! -f "$ref" ]; then
+    echo "(making refray's converged reference, 1024 sobol spp, once: about a minute on 2 cores)"
+    "$bin" render scenes/soft.rf -o "$ref" --samples 1024 --sampler sobol --seed 1000004 --quiet
+fi
+anchors=""
+if command -v python3 >/dev/null 2>&1; then
+    # Mitsuba 3 from pip (--install: only when it is missing), POV-Ray from Debian; a missing one
+    # is named and skipped. The first run renders their references (about 15 minutes).
+    if python3 tools/anchor_soft.py --install --runs "$runs" --spp 1,4,16,64 --csv "$tmp/anchors.csv" > "$tmp/anchors.txt" 2>&1; then
+        anchors="--anchors $tmp/anchors.csv"
+        sed 's/^/  /' "$tmp/anchors.txt"
+    else
+        echo "(tools/anchor_soft.py failed:)"; sed 's/^/  /' "$tmp/anchors.txt"
+    fi
+fi
+"$bin" bench scenes/soft.rf --ref "$ref" --samplers random,stratified,sobol,sobol/4,uniform,uniform/4,adaptive \
+    --spp 1,4,16,64 --runs "$runs" --quiet --csv out/bench/soft_bench.csv --plot out/bench/soft_bench.png $anchors
+echo "reproduce: $bin bench scenes/soft.rf --ref $ref --samplers random,stratified,sobol,sobol/4,uniform,uniform/4,adaptive --spp 1,4,16,64 --runs $runs [--anchors ANCHORS.csv]"
+echo "  python3 tools/anchor_soft.py --csv ANCHORS.csv (Mitsuba 3 and POV-Ray, whole processes)"

@@ -3,16 +3,19 @@
 # as root it installs the Debian packages; otherwise it prints the one apt-get line and fails.
 # Usage: tools/deps.sh check   (exit 0 when everything is present, quiet)
 #        tools/deps.sh         (install or print the line)
-#        tools/deps.sh bench   (the benchmark's anchors, optional: Embree, POV-Ray and the CGAL
-#                               demo data; installed as root, else the line is printed; never fails)
+#        tools/deps.sh bench   (the benchmark's anchors and tools, optional: Embree, POV-Ray, the CGAL
+#                               demo data, gnuplot for the plot, python3-numpy for the anchor script;
+#                               installed as root, else the line is printed; never fails)
 set -u
-BENCH_PACKAGES="libembree-dev povray libcgal-demo"
+BENCH_PACKAGES="libembree-dev povray libcgal-demo gnuplot-nox python3-numpy"
 
 if [ "${1:-}" = bench ]; then
     m=""
     [ -f /usr/include/embree3/rtcore.h ] || m="$m libembree-dev"
     command -v povray >/dev/null 2>&1 || m="$m povray"
     [ -f /usr/share/doc/libcgal-demo/data.tar.gz ] || m="$m libcgal-demo"
+    command -v gnuplot >/dev/null 2>&1 || m="$m gnuplot-nox"
+    python3 -c 'import numpy' >/dev/null 2>&1 || m="$m python3-numpy"
     [ -z "$m" ] && exit 0
     if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
         echo "refray bench: installing the anchors:$m" >&2

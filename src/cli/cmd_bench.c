@@ -39,6 +39,8 @@ typedef struct {
     const char *scene, *ref, *csv, *plot, *anchors;
     int ref_samples, runs, threads, width, height, light_samples, seed, quiet;
     int strategy[MAX_STRATEGIES], nstrategies; /* RfSampler or ADAPTIVE */
+    int light[MAX_STRATEGIES];                  /* NAME/L: L shadow rays per area light; 0: default */
+    char name[MAX_STRATEGIES][32];              /* as written */
     int spp[MAX_SPP], nspp;                     /* ascending */
 } Args;
 
@@ -57,7 +59,8 @@ static void usage(FILE *out)
             "                 --ref-samples (default 1024) sobol samples and seed S + %u, written to\n"
             "                 <OUT>_ref.exr when --csv OUT.csv is given\n"
             "  --samplers     default random,stratified,sobol,uniform,adaptive; adaptive is §3.9\n"
-            "                 adaptive supersampling at depths 1..3 (its spp: the mean samples taken)\n"
+            "                 adaptive supersampling at depths 1..3 (its spp: the mean samples taken);\n"
+            "                 NAME/L: with L shadow rays per area light and camera sample\n"
             "  --spp          default 1,4,16,64,256\n"
             "  --csv          rows renderer,strategy,spp,seconds,rmse,relmse (renderer \"refray\")\n"
             "  --plot         log-log relMSE against seconds with gnuplot (OUT.gp and OUT.dat beside)\n"
@@ -72,11 +75,6 @@ static double now(void)
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-static const char *strategy_name(int s)
-{
-    return s == ADAPTIVE ? "adaptive" : rf_sampler_name((RfSampler)s);
 }
 
 /* ---- options ------------------------------------------------------------------------------ */
@@ -103,6 +101,15 @@ static int parse_strategies(const char *v, Args *a)
     char items[MAX_STRATEGIES][32];
     a->nstrategies = split_list(v, items, MAX_STRATEGIES);
     for (int i = 0; i < a->nstrategies; i++) {
+        /* NAME or NAME/L: the sampler, and L shadow rays per area light and camera sample */
+        char *slash = strchr(items[i], '/');
+        memcpy(a->name[i], items[i], sizeof a->name[i]);
+        a->light[i] = 0;
+        if (slash) {
+            *slash = 0;
+            if (!rf_arg_int(slash + 1, 1, 1 << 16, &a->light[i]))
+                return 0;
+        }
         a->strategy[i] = strcmp(items[i], "adaptive") == 0 ? ADAPTIVE : rf_sampler_parse(items[i]);
         if (a->strategy[i] == -1)
             return 0;
@@ -599,18 +606,19 @@ static int measure_all(const Args *a, const RfScene *scene, RfRenderOptions opt,
             RfImage img;
             RfRenderStats st;
             opt.adaptive = adaptive;
+            opt.light_samples = a->light[s] ? a->light[s] : a->light_samples;
             if (adaptive)
                 opt.adaptive_depth = k + 1, opt.samples = 1;
             else
                 opt.sampler = a->strategy[s], opt.samples = a->spp[k];
             RfStatus rs = render_measured(scene, &opt, a->runs, &r->seconds, &img, &st);
             if (rs != RF_OK) {
-                fprintf(stderr, "refray bench: %s: %s: %s\n", a->scene, strategy_name(a->strategy[s]),
+                fprintf(stderr, "refray bench: %s: %s: %s\n", a->scene, a->name[s],
                         rf_status_str(rs));
                 return 1;
             }
             snprintf(r->renderer, sizeof r->renderer, "refray");
-            snprintf(r->strategy, sizeof r->strategy, "%s", strategy_name(a->strategy[s]));
+            snprintf(r->strategy, sizeof r->strategy, "%s", a->name[s]);
             r->spp = adaptive ? (double)st.primary_rays / ((double)st.width * st.height) : opt.samples;
             int ok = image_errors(&img, ref, &r->rmse, &r->relmse);
             rf_image_free(&img);
