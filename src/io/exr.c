@@ -423,10 +423,9 @@ RfStatus rf_exr_read(const char *path, RfImage *img, char *err, size_t err_size)
     int64_t w, h;
     int idx_r = -1, idx_g = -1, idx_b = -1, idx_a = -1, idx_y = -1, nc, i, y_only;
 
-    if (!img)
-        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no image to read into");
-    img->width = img->height = img->channels = 0;
-    img->data = NULL;
+    st = rf_io_read_start(img, path, err, err_size);
+    if (st != RF_OK)
+        return st;
     st = exr_open(path, &io, &ctx, err, err_size);
     if (st != RF_OK)
         return st;

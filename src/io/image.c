@@ -73,6 +73,17 @@ void rf_image_free(RfImage *img)
     img->width = img->height = img->channels = 0;
 }
 
+RfStatus rf_io_read_start(RfImage *img, const char *path, char *err, size_t err_size)
+{
+    if (!img)
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no image to read into");
+    img->width = img->height = img->channels = 0;
+    img->data = NULL;
+    if (!path)
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no input path");
+    return RF_OK;
+}
+
 RfStatus rf_io_check_image(const RfImage *img, const char *path, char *err, size_t err_size)
 {
     if (!path)

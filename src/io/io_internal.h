@@ -17,6 +17,9 @@ RfStatus rf_io_fail(RfStatus status, char *err, size_t err_size, const char *pat
 RfStatus rf_io_fail_errno(RfStatus status, char *err, size_t err_size, const char *path, const char *what,
                           int errnum);
 
+/* The start of every reader: img must exist (it is emptied) and path must be given. */
+RfStatus rf_io_read_start(RfImage *img, const char *path, char *err, size_t err_size);
+
 /* Validates width/height/channels/data of an image to be written. */
 RfStatus rf_io_check_image(const RfImage *img, const char *path, char *err, size_t err_size);
 

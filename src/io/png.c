@@ -165,12 +165,9 @@ static RfStatus png_read_impl(const char *path, RfPngOptions decode, RfImage *im
     int depth, color_type, nc;
     size_t rowbytes, i, n;
 
-    if (!img)
-        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no image to read into");
-    img->width = img->height = img->channels = 0;
-    img->data = NULL;
-    if (!path)
-        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no input path");
+    RfStatus started = rf_io_read_start(img, path, err, err_size);
+    if (started != RF_OK)
+        return started;
     st = check_options(decode, path, err, err_size);
     if (st != RF_OK)
         return st;

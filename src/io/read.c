@@ -12,12 +12,9 @@ RfStatus rf_image_read(const char *path, RfPngOptions png_decode, RfImage *img, 
     size_t n;
     FILE *fp;
 
-    if (!img)
-        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no image to read into");
-    img->width = img->height = img->channels = 0;
-    img->data = NULL;
-    if (!path)
-        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no input path");
+    RfStatus started = rf_io_read_start(img, path, err, err_size);
+    if (started != RF_OK)
+        return started;
     fp = fopen(path, "rb");
     if (!fp)
         return rf_io_fail_errno(RF_ERR_IO, err, err_size, path, "cannot open", errno);

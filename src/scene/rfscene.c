@@ -736,53 +736,65 @@ static RfStatus read_mesh(RfReader *r, const RfToken *kw)
     return st;
 }
 
+/* One word of a closed set (its parser returns -1 for others) into *k; `what` and the names
+ * make the message. */
+static RfStatus read_choice(RfLexer *lx, const char *what, const char *names, int (*parse)(const char *),
+                            int *k)
+{
+    RfToken w;
+    char q[96], name[32], want[128];
+    snprintf(want, sizeof want, "a %s (%s)", what, names);
+    RfStatus st = rf_lex_word(lx, want, &w);
+    if (st)
+        return st;
+    snprintf(name, sizeof name, "%.*s", (int)(w.len < 31 ? w.len : 31), w.s);
+    if ((*k = parse(name)) < 0)
+        return rf_lex_error(lx, w.line, w.col, "unknown %s %s (%s)", what, rf_lex_quote(&w, q, sizeof q), names);
+    return RF_OK;
+}
+
+/* A sampler's name, or RF_SAMPLER_COUNT for "adaptive" (§3.9 adaptive supersampling). */
+static int parse_sampler(const char *name)
+{
+    return strcmp(name, "adaptive") == 0 ? RF_SAMPLER_COUNT : rf_sampler_parse(name);
+}
+
 /* sampler uniform|random|stratified|sobol, or sampler adaptive [threshold T] [depth D] (§3.9) */
 static RfStatus read_sampler(RfReader *r, const RfToken *kw)
 {
     RfLexer *lx = &r->lx;
     RfRenderSettings *rs = &r->scene->render;
-    RfToken w, a;
-    char q[96], name[32];
-    RfStatus st = rf_lex_word(lx, "a sampler (uniform, random, stratified, sobol, adaptive)", &w);
+    RfToken a;
+    int s;
+    RfStatus st = read_choice(lx, "sampler", "uniform, random, stratified, sobol, adaptive", parse_sampler, &s);
     if (st)
         return st;
-    snprintf(name, sizeof name, "%.*s", (int)(w.len < 31 ? w.len : 31), w.s);
-    if (rf_lex_is(&w, "adaptive")) {
-        rs->adaptive = 1;
-        while (!st && next_attr(lx, &a)) {
-            if (rf_lex_is(&a, "threshold"))
-                st = rf_lex_number_ge(lx, "adaptive threshold", 0.0, &rs->adaptive_threshold);
-            else if (rf_lex_is(&a, "depth"))
-                st = rf_lex_int(lx, "adaptive depth", 0, 8, &rs->adaptive_depth);
-            else
-                return bad_attr(lx, &w, &a);
-        }
-        return st;
+    rs->adaptive = s == RF_SAMPLER_COUNT;
+    if (!rs->adaptive) {
+        rs->sampler = (RfSampler)s;
+        return no_attrs(lx, kw);
     }
-    int s = rf_sampler_parse(name);
-    if (s < 0)
-        return rf_lex_error(lx, w.line, w.col, "unknown sampler %s (uniform, random, stratified, sobol, adaptive)",
-                            rf_lex_quote(&w, q, sizeof q));
-    rs->sampler = (RfSampler)s;
-    rs->adaptive = 0;
-    return no_attrs(lx, kw);
+    while (!st && next_attr(lx, &a)) {
+        if (rf_lex_is(&a, "threshold"))
+            st = rf_lex_number_ge(lx, "adaptive threshold", 0.0, &rs->adaptive_threshold);
+        else if (rf_lex_is(&a, "depth"))
+            st = rf_lex_int(lx, "adaptive depth", 0, 8, &rs->adaptive_depth);
+        else
+            return bad_attr(lx, kw, &a);
+    }
+    return st;
 }
 
 /* filter box|gaussian|mitchell [radius R] [sigma S] (§3.9 reconstruction) */
-static RfStatus read_filter(RfReader *r)
+static RfStatus read_filter(RfReader *r, const RfToken *kw)
 {
     RfLexer *lx = &r->lx;
     RfRenderSettings *rs = &r->scene->render;
-    RfToken w, a;
-    char q[96], name[32];
-    RfStatus st = rf_lex_word(lx, "a filter (box, gaussian, mitchell)", &w);
+    RfToken a;
+    int k;
+    RfStatus st = read_choice(lx, "filter", "box, gaussian, mitchell", rf_filter_parse, &k);
     if (st)
         return st;
-    snprintf(name, sizeof name, "%.*s", (int)(w.len < 31 ? w.len : 31), w.s);
-    int k = rf_filter_parse(name);
-    if (k < 0)
-        return rf_lex_error(lx, w.line, w.col, "unknown filter %s (box, gaussian, mitchell)",
-                            rf_lex_quote(&w, q, sizeof q));
     rs->filter = rf_filter_default((RfFilterKind)k);
     while (!st && next_attr(lx, &a)) {
         if (rf_lex_is(&a, "radius")) {
@@ -793,7 +805,7 @@ static RfStatus read_filter(RfReader *r)
             if (!(st = rf_lex_number(lx, "filter sigma", &rs->filter.sigma)))
                 st = rf_lex_check(lx, rs->filter.sigma > 0.0, "filter sigma must be > 0, found %g", rs->filter.sigma);
         } else {
-            return bad_attr(lx, &w, &a);
+            return bad_attr(lx, kw, &a);
         }
     }
     return st;
@@ -837,7 +849,7 @@ static RfStatus read_statement(RfReader *r, const RfToken *kw)
     else if (rf_lex_is(kw, "sampler"))
         return read_sampler(r, kw);
     else if (rf_lex_is(kw, "filter"))
-        return read_filter(r);
+        return read_filter(r, kw);
     else if (rf_lex_is(kw, "shutter")) {
         if (!(st = rf_lex_number(lx, "shutter open", &rs->shutter_open)) &&
             !(st = rf_lex_number(lx, "shutter close", &rs->shutter_close)))
