@@ -23,11 +23,20 @@ enum { RF_KEY_ORDER = 1, RF_KEY_LHS_Y, RF_KEY_SOBOL_INDEX, RF_KEY_SOBOL_X, RF_KE
 
 /* A 64-bit key for one use within a pixel and dimension. The chain differs from rng.h's (other
  * constants, add instead of xor), so keys and jitter values are unrelated. */
+static uint64_t rf_key_base(uint64_t pixel, uint64_t seed)
+{
+    return rf_mix64(rf_mix64(seed ^ 0x5851F42D4C957F2DULL) + pixel * 0x9E3779B97F4A7C15ULL);
+}
+
+/* The key of one tag from rf_key_base: a sample that needs several keys hashes the pixel once. */
+static uint64_t rf_key_tag(uint64_t base, uint32_t dimension, uint32_t tag)
+{
+    return rf_mix64(base ^ (((uint64_t)tag << 32) | dimension));
+}
+
 static uint64_t rf_key(uint64_t pixel, uint32_t dimension, uint64_t seed, uint32_t tag)
 {
-    uint64_t h = rf_mix64(seed ^ 0x5851F42D4C957F2DULL);
-    h = rf_mix64(h + pixel * 0x9E3779B97F4A7C15ULL);
-    return rf_mix64(h ^ (((uint64_t)tag << 32) | dimension));
+    return rf_key_tag(rf_key_base(pixel, seed), dimension, tag);
 }
 
 /* A keyed bijection of [0, n) for any n, cheap enough to run per sample: on the smallest
@@ -62,10 +71,14 @@ static uint32_t rf_permute(uint32_t x, uint32_t n, uint64_t key)
     return x;
 }
 
-static uint32_t rf_reverse_bits(uint32_t x)
+static inline uint32_t rf_reverse_bits(uint32_t x)
 {
+#if defined(__GNUC__)
+    x = __builtin_bswap32(x); /* the bytes in one instruction, then the bits within them */
+#else
     x = (x << 16) | (x >> 16);
     x = ((x & 0x00FF00FFu) << 8) | ((x >> 8) & 0x00FF00FFu);
+#endif
     x = ((x & 0x0F0F0F0Fu) << 4) | ((x >> 4) & 0x0F0F0F0Fu);
     x = ((x & 0x33333333u) << 2) | ((x >> 2) & 0x33333333u);
     x = ((x & 0x55555555u) << 1) | ((x >> 1) & 0x55555555u);
@@ -76,7 +89,7 @@ static uint32_t rf_reverse_bits(uint32_t x)
  * built only of addition, multiplication by an odd number and x ^= x * (even number), each of
  * which changes bit i as a function of bits 0..i alone. The key enters both an addition and a
  * multiplier, so whether the flip of bit i depends on a lower bit varies from key to key. */
-static uint32_t rf_lk_permute(uint32_t x, uint64_t key)
+static inline uint32_t rf_lk_permute(uint32_t x, uint64_t key)
 {
     x += (uint32_t)key;
     x *= (uint32_t)(key >> 32) | 1u;
@@ -92,19 +105,27 @@ static uint32_t rf_lk_permute(uint32_t x, uint64_t key)
 /* Owen's nested uniform scramble of a 32-bit fraction (Burley 2020): read with its most
  * significant bit first, the flip of each digit depends only on the digits before it, so every
  * elementary interval is mapped onto one of the same size. */
-static uint32_t rf_owen_scramble(uint32_t x, uint64_t key)
+static inline uint32_t rf_owen_scramble(uint32_t x, uint64_t key)
 {
     return rf_reverse_bits(rf_lk_permute(rf_reverse_bits(x), key));
 }
 
+/* rf_owen_scramble of a fraction given with its bits already reversed (least significant digit
+ * first): one reversal instead of two. */
+static inline uint32_t rf_owen_scramble_reversed(uint32_t reversed, uint64_t key)
+{
+    return rf_reverse_bits(rf_lk_permute(reversed, key));
+}
+
 /* The second component of the 2D Sobol sequence as a 32-bit fraction: the generator matrix of
  * the primitive polynomial x + 1 (direction numbers m_1 = 1, m_j = 2 m_{j-1} xor m_{j-1}, i.e.
- * Pascal's triangle mod 2), column j being v_j = m_j 2^(32-j). The first component is the van
- * der Corput sequence, rf_reverse_bits(i). */
-static uint32_t rf_sobol_y(uint32_t i)
+ * Pascal's triangle mod 2), column j being v_j = m_j 2^(32-j), built here with its bits
+ * reversed (v_1 = 1, v_{j+1} = v_j xor 2 v_j), the form the scramble takes. The first component
+ * is the van der Corput sequence, rf_reverse_bits(i). */
+static inline uint32_t rf_sobol_y_reversed(uint32_t i)
 {
-    uint32_t y = 0, v = 0x80000000u;
-    for (; i; i >>= 1, v ^= v >> 1)
+    uint32_t y = 0, v = 1u;
+    for (; i; i >>= 1, v ^= v << 1)
         if (i & 1u)
             y ^= v;
     return y;
@@ -115,9 +136,9 @@ static uint32_t rf_sobol_y(uint32_t i)
  * the bits above j, so each aligned block [a 2^m, (a+1) 2^m) of samples is an aligned block of
  * the sequence, in another order: the shuffled sequence is again a (0,2)-sequence, and any
  * prefix is a union of nets. */
-static uint32_t rf_sobol_index(uint32_t k, uint64_t pixel, uint32_t dimension, uint64_t seed)
+static uint32_t rf_sobol_index(uint32_t k, uint64_t base, uint32_t dimension)
 {
-    return rf_owen_scramble(k, rf_key(pixel, dimension, seed, RF_KEY_SOBOL_INDEX));
+    return rf_owen_scramble(k, rf_key_tag(base, dimension, RF_KEY_SOBOL_INDEX));
 }
 
 static const double rf_two_m32 = 1.0 / 4294967296.0;
@@ -199,9 +220,11 @@ void rf_sample_2d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_t 
         return;
     }
     case RF_SAMPLER_SOBOL: {
-        uint32_t i = rf_sobol_index(k, pixel, dimension, seed);
-        uint32_t x = rf_owen_scramble(rf_reverse_bits(i), rf_key(pixel, dimension, seed, RF_KEY_SOBOL_X));
-        uint32_t y = rf_owen_scramble(rf_sobol_y(i), rf_key(pixel, dimension, seed, RF_KEY_SOBOL_Y));
+        uint64_t base = rf_key_base(pixel, seed);
+        uint32_t i = rf_sobol_index(k, base, dimension);
+        /* the van der Corput component is i reversed, so its scramble needs one reversal */
+        uint32_t x = rf_owen_scramble_reversed(i, rf_key_tag(base, dimension, RF_KEY_SOBOL_X));
+        uint32_t y = rf_owen_scramble_reversed(rf_sobol_y_reversed(i), rf_key_tag(base, dimension, RF_KEY_SOBOL_Y));
         out[0] = (double)x * rf_two_m32;
         out[1] = (double)y * rf_two_m32;
         return;
@@ -229,8 +252,9 @@ double rf_sample_1d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_
     }
     case RF_SAMPLER_SOBOL: {
         /* the first component of the 2D sample: the scrambled van der Corput sequence */
-        uint32_t i = rf_sobol_index(k, pixel, dimension, seed);
-        uint32_t x = rf_owen_scramble(rf_reverse_bits(i), rf_key(pixel, dimension, seed, RF_KEY_SOBOL_X));
+        uint64_t base = rf_key_base(pixel, seed);
+        uint32_t i = rf_sobol_index(k, base, dimension);
+        uint32_t x = rf_owen_scramble_reversed(i, rf_key_tag(base, dimension, RF_KEY_SOBOL_X));
         return (double)x * rf_two_m32;
     }
     case RF_SAMPLER_RANDOM:
