@@ -2,6 +2,10 @@
  * through the context back end (gl_context.h), so this file knows nothing of OSMesa. */
 #include "raster.h"
 
+/* what the rasterizer expands at most (it has no GPU instancing) */
+#define RF_RASTER_MAX_TRIANGLES 50000000
+#define RF_RASTER_MAX_PLACEMENTS 5000000
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -488,6 +492,16 @@ RfStatus rf_raster_render(const RfScene *s, const RfRasterOptions *opt,
         memset(depth, 0, sizeof *depth);
     if (!s->has_camera) {
         snprintf(err, errsz, "the scene has no camera");
+        return RF_ERR_DOMAIN;
+    }
+    /* the rasterizer draws every placement (no instancing on the GPU side): refuse a graph that
+     * expands beyond what it could draw, before expanding it */
+    RfTriangleCount tc = rf_scene_triangle_count(s);
+    if (tc.rendered > RF_RASTER_MAX_TRIANGLES || tc.instances_rendered > RF_RASTER_MAX_PLACEMENTS) {
+        snprintf(err, errsz,
+                 "the scene graph expands to %zu triangles in %zu placements: more than the rasterizer draws "
+                 "(%d triangles, %d placements)",
+                 tc.rendered, tc.instances_rendered, RF_RASTER_MAX_TRIANGLES, RF_RASTER_MAX_PLACEMENTS);
         return RF_ERR_DOMAIN;
     }
     for (size_t i = 0; i < s->light_count; i++)

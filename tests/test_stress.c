@@ -160,6 +160,10 @@ static void test_stress_invalid_counter(void)
     RF_CHECK_EQ_INT(st.invalid_samples, 0);
     rf_image_free(&img);
     sc.lights[0].intensity = rf_rgb(NAN, 1, 1);
+    /* a reference render fails on the first invalid sample and names it; a preview counts them */
+    RF_CHECK_EQ_INT(rf_render(&sc, &o, &img, &st), RF_ERR_NUMERIC);
+    RF_CHECK(st.invalid.found && st.invalid.sample == 0 && strstr(st.invalid.path, "camera -> ") != NULL);
+    o.preview = 1;
     RF_CHECK_EQ_INT(rf_render(&sc, &o, &img, &st), RF_OK);
     RF_CHECK(st.invalid_samples > 0 && st.invalid_samples < 256);
     int finite = 1;

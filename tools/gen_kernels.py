@@ -38,7 +38,8 @@ def main():
     for s in sets():
         lines += ["#define RF_KPARTS %d" % s, '#include "kernel_body.h"', "#undef RF_KPARTS"]
     lines.append("const RfKernel rf_kernels[] = {")
-    lines += ["    {%d, tile_%d, adaptive_centres_%d, adaptive_refine_%d}," % (s, s, s, s) for s in sets()]
+    lines += ["    {%d, tile_%d, adaptive_centres_%d, adaptive_refine_%d, explain_%d}," % (s, s, s, s, s)
+              for s in sets()]
     lines += ["};", "const int rf_kernel_count = %d;" % len(sets())]
     with open("src/render/kernels_list.h", "w") as f:
         f.write("\n".join(lines) + "\n")

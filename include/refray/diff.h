@@ -9,7 +9,7 @@
  * metrics over the remaining pixels are the "interior" ones, and the verdict uses them.
  *
  * Verdict (OpenImageIO idiff's ladder, refray's defaults tuned to the comparator's accuracy
- * goal): FAIL when a value is NaN/Inf on one side only, a pixel error exceeds hardfail, more than
+ * goal): FAIL when a value is NaN or Inf on either side, a pixel error exceeds hardfail, more than
  * fail_percent % of the pixels exceed fail, or mean_abs exceeds fail_mean; otherwise WARN when
  * more than warn_percent % exceed warn; otherwise PASS. */
 #ifndef REFRAY_DIFF_H
@@ -36,7 +36,7 @@ RfDiffOptions rf_diff_options_default(void);
 
 typedef struct {
     long pixels;                /* pixels compared */
-    long nonfinite;             /* pixels with NaN/Inf in one image but not the same in the other */
+    long nonfinite;             /* pixels with NaN or Inf in either image (never a valid radiance) */
     double max_abs, mean_abs, rmse, psnr, rel_mse;
     int max_x, max_y;           /* where max_abs is (row 0 at the top); -1 when no pixel */
     long above_255, above_warn, above_fail; /* pixels whose error exceeds 1/255, warn, fail */

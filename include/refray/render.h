@@ -39,6 +39,10 @@ typedef struct {
     double filter_radius; /* pixels; 0: the filter's default (or the scene's radius for its filter) */
     double aperture, focus; /* §3.10 thin lens; NaN: the scene camera's */
     int light_samples;   /* > 0: shadow rays per area light instead of each light's own */
+    int preview;         /* 0 (a reference render): a sample whose radiance is NaN, Inf or negative,
+                            or a pixel that overflows float, fails the render (RF_ERR_NUMERIC, the
+                            first one described in RfRenderStats.invalid); 1: such samples become
+                            black and are counted */
     int threads;         /* 0: every core */
     int local_only;      /* 1: primary rays and local Phong only (no shadows, reflection,
                             refraction): the comparator's matching mode */
@@ -59,6 +63,14 @@ typedef struct {
     uint64_t primary_rays, shadow_rays, secondary_rays;
     uint64_t invalid_samples; /* samples whose radiance was NaN or Inf: counted, replaced by 0 */
     uint64_t adaptive_pixels; /* §3.9 adaptive supersampling: the pixels subdivided */
+    /* the first invalid sample (lowest pixel index, then sample): its pixel, sample index (-1:
+     * the pixel's mean overflows float), value, and path ("camera -> sphere #3 (material 'red')
+     * -> mirror ray -> ..."), re-traced after the render */
+    struct {
+        int found, x, y, sample;
+        double value[3];
+        char path[512];
+    } invalid;
     int width, height, samples, max_depth, threads;
     int sampler, adaptive;    /* what ran: RfSampler, adaptive supersampling on */
     RfFilter filter;

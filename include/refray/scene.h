@@ -282,9 +282,14 @@ RfStatus rf_scene_add_instance(RfScene *scene, int object, RfMat4 m, size_t *ind
  * first keyframe's. msg says what is wrong. */
 RfStatus rf_scene_set_motion(RfScene *scene, size_t index, const RfMotion *m, char *msg, size_t msgsz);
 
-/* The graph checks (scene_graph.c): every instance names an existing object and no object
- * contains itself through instances (a cycle). On failure *loc is the instance statement to
- * blame and msg says which objects form the cycle. */
+/* The deepest nesting of instances (a chain of objects, each placing the next) a scene may
+ * have: every tool that walks the graph recursively stays far from its stack's end. */
+#define RF_SCENE_MAX_NESTING 64
+
+/* The graph checks (scene_graph.c): every instance names an existing object, no object
+ * contains itself through instances (a cycle), and no chain of objects is longer than
+ * RF_SCENE_MAX_NESTING. On failure *loc is the instance statement to blame and msg says which
+ * objects form the cycle, or where the chain gets too deep. */
 RfStatus rf_scene_graph_check(const RfScene *scene, RfSrcLoc *loc, char *msg, size_t msgsz);
 /* Triangles as stored (a convex polygon counts as count - 2, a non-convex one as 1) and as
  * rendered after instancing: the world's primitives with every instance expanded. */

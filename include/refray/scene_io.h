@@ -27,6 +27,10 @@ typedef struct {
 
 RfLoadOptions rf_load_options_default(void);
 
+/* The largest scene, OBJ or MTL file the readers take (decompressed): larger ones, devices and
+ * pipes are refused with a message instead of read without end. */
+#define RF_SCENE_MAX_FILE_BYTES (2040 << 20)
+
 /* Reads a scene file: ".nff" -> NFF, ".rf" -> refray's format, ".obj" -> a Wavefront OBJ
  * mesh with a default camera and headlight (rf_scene_read_obj), a trailing ".gz" is
  * decompressed first (zlib); any other name is recognised by its first keyword.

@@ -13,7 +13,8 @@ typedef enum {
     RF_ERR_DOMAIN,     /* an input outside the domain of the formula */
     RF_ERR_PARSE,      /* malformed input text */
     RF_ERR_IO,         /* a file could not be read or written */
-    RF_ERR_NOMEM       /* out of memory */
+    RF_ERR_NOMEM,      /* out of memory */
+    RF_ERR_NUMERIC     /* a computation gave NaN, Inf or a negative radiance */
 } RfStatus;
 
 /* A short English description of a status, e.g. "matrix is singular". */

@@ -50,7 +50,7 @@ static void usage(FILE *out)
             "                     [--adaptive-threshold T] [--adaptive-depth D]\n"
             "                     [--filter box|gaussian|mitchell] [--filter-radius R]\n"
             "                     [--aperture A --focus F] [--light-samples N]\n"
-            "                     [--kernel auto|general|PARTS] [--quiet]\n"
+            "                     [--kernel auto|general|PARTS] [--preview] [--quiet]\n"
             "  SCENE      an .nff, .rf or .obj scene (docs/scene-format.md)\n"
             "  -o         linear OpenEXR output (float RGB, settings in the header)\n"
             "  --png      display PNG: gamma %.1f encoded (the script's §1.1.2), or --srgb\n"
@@ -64,6 +64,8 @@ static void usage(FILE *out)
             "             the depth, default 2)\n"
             "  --aperture --focus  §3.10 thin lens: its radius and the distance in focus\n"
             "  --light-samples  shadow rays per area light and camera sample (default: the light's)\n"
+            "  --preview  a sample with a NaN, Inf or negative radiance becomes black and is counted;\n"
+            "             without it (a reference render) it fails the render, naming its pixel and path\n"
             "  --kernel   the render kernel: auto (the one compiled for what the scene needs),\n"
             "             general (every part) or a compiled one named as refray info names\n"
             "             it (general-secondary-fresnel: without those parts); the same image\n",
@@ -181,6 +183,8 @@ int rf_cmd_render(int argc, char **argv)
             ok = rf_arg_int(v, 1, 1 << 16, &opt.light_samples), i++;
         } else if (strcmp(a, "--kernel") == 0 && v) {
             ok = strcmp(v, "auto") == 0 || (opt.kernel = rf_kernel_parse(v)) != 0, i++;
+        } else if (strcmp(a, "--preview") == 0) {
+            opt.preview = 1;
         } else if (strcmp(a, "--local") == 0) {
             opt.local_only = 1;
         } else if (strcmp(a, "--quiet") == 0) {
@@ -240,7 +244,21 @@ int rf_cmd_render(int argc, char **argv)
         rf_image_free(&depth);
         return 1;
     }
+    if (st.invalid.found) { /* the first NaN, Inf or negative radiance, with its path */
+        char where[64];
+        if (st.invalid.sample < 0)
+            snprintf(where, sizeof where, "the mean of pixel (%d, %d)", st.invalid.x, st.invalid.y);
+        else
+            snprintf(where, sizeof where, "pixel (%d, %d), sample %d", st.invalid.x, st.invalid.y, st.invalid.sample);
+        fprintf(stderr, "refray render: %s: %s radiance (%g, %g, %g) at %s (%llu such samples); path: %s%s\n",
+                scene_path, st.invalid.sample < 0 ? "float-overflowing" : "invalid (NaN, Inf or negative)",
+                st.invalid.value[0], st.invalid.value[1], st.invalid.value[2], where,
+                (unsigned long long)st.invalid_samples, st.invalid.path,
+                rs == RF_ERR_NUMERIC ? "; nothing written (--preview renders such samples black)" : "");
+    }
     if (rs != RF_OK) {
+        if (rs == RF_ERR_NUMERIC)
+            return 1;
         if (rs == RF_ERR_DOMAIN && focus_missing)
             fprintf(stderr, "refray render: %s: --aperture needs --focus (the scene's camera has none)\n", scene_path);
         else if (rs == RF_ERR_DOMAIN && opt.kernel)

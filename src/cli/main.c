@@ -1,4 +1,5 @@
 /* The `refray` command: dispatches to the subcommands. */
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -32,6 +33,9 @@ static void usage(FILE *out)
 
 int main(int argc, char **argv)
 {
+    /* a file-size limit fails the write (EFBIG), which cleans up, instead of killing the process
+     * with a temporary file left behind */
+    signal(SIGXFSZ, SIG_IGN);
     if (argc < 2) {
         usage(stderr);
         return 2;

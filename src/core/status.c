@@ -10,6 +10,7 @@ const char *rf_status_str(RfStatus status)
     case RF_ERR_PARSE: return "malformed input";
     case RF_ERR_IO: return "input/output error";
     case RF_ERR_NOMEM: return "out of memory";
+    case RF_ERR_NUMERIC: return "a computation gave NaN, Inf or a negative value";
     }
     return "unknown status";
 }

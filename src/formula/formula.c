@@ -463,12 +463,15 @@ int rf_in_vec(RfFormulaCall *call, const char *name, int dim, double *v, int *di
         return 1;
     if (!it)
         return rf_call_error(call, "internal: optional vector '%s' needs a default", name);
-    int n = json_numbers(it, v, 4);
+    /* into a buffer of the largest size first: v holds only dim numbers when dim is given */
+    double buf[4];
+    int n = json_numbers(it, buf, 4);
     if (dim ? n != dim : (n < 2 || n > 4)) {
         if (dim)
             return rf_call_error(call, "input '%s' must be a vector of %d finite numbers", name, dim);
         return rf_call_error(call, "input '%s' must be a vector of 2 to 4 finite numbers", name);
     }
+    memcpy(v, buf, sizeof(double) * (size_t)n);
     if (dim_out)
         *dim_out = n;
     return 0;

@@ -66,8 +66,8 @@ static void add_pixel(RfDiffStats *s, Acc *acc, const RfDiffOptions *o, const fl
     for (int c = 0; c < nc; c++) {
         double a = pa[c], b = pb[c];
         if (!isfinite(a) || !isfinite(b)) {
-            if (!(a == b)) /* the same infinity on both sides is no difference */
-                bad = 1;
+            /* a NaN or Inf is never a valid radiance: even the same infinity on both sides fails */
+            bad = 1;
             continue;
         }
         double e = fabs(a - b);

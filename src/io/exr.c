@@ -30,6 +30,16 @@ static void exr_on_error(exr_const_context_t ctxt, exr_result_t code, const char
     }
 }
 
+/* A write context's handler may not ask for the user data: the library calls it with the
+ * context's lock held, and exr_get_user_data takes that lock again (a deadlock when a write
+ * fails). The writer keeps its own message (exr_pwrite) and falls back to the code's. */
+static void exr_on_write_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
+{
+    (void)ctxt;
+    (void)code;
+    (void)msg;
+}
+
 static int64_t exr_pwrite(exr_const_context_t ctxt, void *ud, const void *buffer, uint64_t sz, uint64_t offset,
                           exr_stream_error_func_ptr_t error_cb)
 {
@@ -43,10 +53,12 @@ static int64_t exr_pwrite(exr_const_context_t ctxt, void *ud, const void *buffer
             continue;
         if (n <= 0) {
             char msg[128];
-            if (n < 0 && strerror_r(errno, msg, sizeof msg) == 0)
-                error_cb(ctxt, EXR_ERR_WRITE_IO, "write failed: %s", msg);
-            else
-                error_cb(ctxt, EXR_ERR_WRITE_IO, "write failed");
+            int e = n < 0 ? errno : ENOSPC; /* a write of 0 bytes: the device is full */
+            if (strerror_r(e, msg, sizeof msg) != 0)
+                snprintf(msg, sizeof msg, "error %d", e);
+            if (!io->msg[0])
+                snprintf(io->msg, sizeof io->msg, "write failed: %s", msg);
+            error_cb(ctxt, EXR_ERR_WRITE_IO, "write failed: %s", msg);
             return -1;
         }
         done += (uint64_t)n;
@@ -226,7 +238,7 @@ RfStatus rf_exr_write_opts(const char *path, const RfImage *img, const RfImageAt
         return st;
     memset(&io, 0, sizeof io);
     io.fd = f.fd;
-    init.error_handler_fn = exr_on_error;
+    init.error_handler_fn = exr_on_write_error;
     init.user_data = &io;
     init.write_fn = exr_pwrite;
 

@@ -81,6 +81,9 @@ RfStatus rf_io_read_start(RfImage *img, const char *path, char *err, size_t err_
     img->data = NULL;
     if (!path)
         return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "no input path");
+    struct stat sb; /* a device would be read without end, a FIFO would block */
+    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
+        return rf_io_fail(RF_ERR_IO, err, err_size, path, "not a regular file (a directory, device or pipe)");
     return RF_OK;
 }
 

@@ -41,6 +41,12 @@ static inline uint32_t rf_kernel_dim(int depth, int slot)
     return 8u + (uint32_t)(depth - 1) * 64u + (uint32_t)(slot & 63);
 }
 
+/* The vertices of one path, written only when a failed sample is traced again to explain it. */
+typedef struct {
+    char text[512];
+    size_t len;
+} RfPathLog;
+
 /* Where a sample path is: its pixel, camera sample k of n, the pattern, its time. */
 typedef struct {
     uint64_t pixel;
@@ -48,7 +54,9 @@ typedef struct {
     RfSampler sampler;
     double time;
     RfMotionState *motion; /* the thread's, set to time */
+    RfPathLog *log;        /* NULL, except when explaining an invalid sample */
 } RfPathSample;
+
 
 /* A light as the kernel walks it: the scene's light with its cut-off in radians. */
 typedef struct {
@@ -89,12 +97,15 @@ typedef struct {
     RfRenderStats *per_thread;      /* one per thread: no sharing on the hot path */
     uint64_t *shadow_cache;         /* per thread and light: the last occluder (rf_tracer_occluded_cached) */
     RfMotionState **motion;         /* per thread: moving instances at the sample's time (or NULL) */
+    const RfScene *scene;           /* for the names in an explained path */
 } RfKernelJob;
 
 typedef struct {
     unsigned parts;   /* RF_K_* compiled in */
     RfTileFn tile;    /* renders one tile of an RfKernelJob */
     RfTileFn adaptive_centres, adaptive_refine; /* §3.9 adaptive supersampling's two passes */
+    /* traces sample k of a pixel again, as the tile did, writing its path into log */
+    RfRgb (*explain)(const RfKernelJob *job, uint64_t pixel, int k, RfPathLog *log);
 } RfKernel;
 
 extern const RfKernel rf_kernels[];

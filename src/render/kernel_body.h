@@ -123,8 +123,13 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
 {
     RfSurfaceHit h;
     if ((RF_ON(RF_K_MOTION) ? rf_tracer_intersect_at(job->tracer, ray, ps->motion, t_min, HUGE_VAL, &h)
-                            : rf_tracer_intersect(job->tracer, ray, t_min, HUGE_VAL, &h)) < 0)
+                            : rf_tracer_intersect(job->tracer, ray, t_min, HUGE_VAL, &h)) < 0) {
+        if (ps->log)
+            rf_kernel_log(ps->log, " -> nothing (background)");
         return job->background;
+    }
+    if (ps->log)
+        rf_kernel_log_hit(ps->log, job->scene, &h);
     const RfMaterial *m = &job->materials[h.material];
     RfVec3 v = rf_vec3_neg(rf_vec3_normalize(ray.dir));
     RfVec3 n = h.shading_normal;
@@ -199,6 +204,8 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
         if (!glossy || RF_KNAME(glossy)(job, &rdir, m->gloss, h.normal, 1, 0, depth, ps)) {
             RfRay rr = rf_ray(rf_ray_offset_origin(h.point, h.normal, rdir, job->fixed_offset), rdir);
             st->secondary_rays++;
+            if (ps->log)
+                rf_kernel_log(ps->log, " -> mirror ray (depth %d)", depth + 1);
             color = rf_rgb_add(color, rf_rgb_mul(wr, RF_KNAME(trace)(job, rr, 0.0, depth + 1, weight * mr, st,
                                                                      shadow_cache, ps)));
         }
@@ -207,6 +214,8 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
         if (!glossy || RF_KNAME(glossy)(job, &tdir, m->gloss, h.normal, 0, 1, depth, ps)) {
             RfRay tr = rf_ray(rf_ray_offset_origin(h.point, h.normal, tdir, job->fixed_offset), tdir);
             st->secondary_rays++;
+            if (ps->log)
+                rf_kernel_log(ps->log, " -> refracted ray (depth %d)", depth + 1);
             color = rf_rgb_add(color, rf_rgb_mul(wt, RF_KNAME(trace)(job, tr, 0.0, depth + 1, weight * mt, st,
                                                                      shadow_cache, ps)));
         }
@@ -223,9 +232,10 @@ static RfRgb RF_KNAME(camera_ray)(const RfKernelJob *job, RfRay ray, const RfPat
     double t_min = job->hither > 0.0 ? job->hither / -rf_vec3_dot(ray.dir, cam->basis.w) : 0.0;
     st->primary_rays++;
     RfRgb c = RF_KNAME(trace)(job, ray, t_min, 1, 1.0, st, shadow_cache, ps);
-    if (!isfinite(c.r) || !isfinite(c.g) || !isfinite(c.b)) {
-        /* never let NaN/Inf reach the film: count it (reported), store black */
-        st->invalid_samples++;
+    if (!rf_kernel_rgb_valid(c)) {
+        /* never let NaN, Inf or a negative radiance reach the film: note the first (the render
+         * fails unless it is a preview), count it, store black */
+        rf_kernel_note_invalid(st, job->width, ps->pixel, (int)ps->k, c);
         c = rf_rgb(0, 0, 0);
     }
     return c;
@@ -266,7 +276,7 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
     for (int y = tile.y0; y < tile.y1; y++)
         for (int x = tile.x0; x < tile.x1; x++) {
             RfPathSample ps = {(uint64_t)y * (uint64_t)job->width + (uint64_t)x, 0, (uint32_t)n, job->sampler,
-                               job->shutter_open, job->motion ? job->motion[thread] : NULL};
+                               job->shutter_open, job->motion ? job->motion[thread] : NULL, NULL};
             RfRgb sum = rf_rgb(0, 0, 0);
             if (n == 1) {
                 if (RF_ON(RF_K_LENS | RF_K_MOTION) && (cam->aperture_radius > 0.0 || job->moving)) {
@@ -298,10 +308,7 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
                 if (!job->filter_box && wsum > 0.0)
                     sum = rf_rgb_scale(wsum_c, (double)n / wsum);
             }
-            float *px = job->img->data + (size_t)ps.pixel * 3;
-            px[0] = (float)(sum.r / n);
-            px[1] = (float)(sum.g / n);
-            px[2] = (float)(sum.b / n);
+            rf_kernel_store(job, st, ps.pixel, rf_rgb(sum.r / n, sum.g / n, sum.b / n));
         }
     return 0;
 }
@@ -315,7 +322,7 @@ static int RF_KNAME(adaptive_centres)(void *ctx, RfTile tile, int thread)
     for (int y = tile.y0; y < tile.y1; y++)
         for (int x = tile.x0; x < tile.x1; x++) {
             RfPathSample ps = {(uint64_t)y * (uint64_t)job->width + (uint64_t)x, 0, 1, RF_SAMPLER_RANDOM,
-                               job->shutter_open, job->motion ? job->motion[thread] : NULL};
+                               job->shutter_open, job->motion ? job->motion[thread] : NULL, NULL};
             RfRgb c = RF_KNAME(camera_sample)(job, x + 0.5, y + 0.5, &ps, st, shadow_cache);
             job->centres[ps.pixel] = c;
         }
@@ -366,16 +373,45 @@ static int RF_KNAME(adaptive_refine)(void *ctx, RfTile tile, int thread)
                 contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[pixel + (uint64_t)job->width]));
             if (job->adaptive_depth > 0 && contrast > job->adaptive_threshold) {
                 RfPathSample ps = {pixel, 0, 1, RF_SAMPLER_RANDOM, job->shutter_open,
-                                   job->motion ? job->motion[thread] : NULL};
+                                   job->motion ? job->motion[thread] : NULL, NULL};
                 c = RF_KNAME(adaptive_square)(job, x, y, 1.0, 1, c, &ps, st, shadow_cache);
                 st->adaptive_pixels++;
             }
-            float *px = job->img->data + (size_t)pixel * 3;
-            px[0] = (float)c.r;
-            px[1] = (float)c.g;
-            px[2] = (float)c.b;
+            rf_kernel_store(job, st, pixel, c);
         }
     return 0;
+}
+
+/* Sample k of a pixel traced again as the tile traced it, its path written into log (the
+ * adaptive passes' samples are explained by the pixel's centre sample). */
+static RfRgb RF_KNAME(explain)(const RfKernelJob *job, uint64_t pixel, int k, RfPathLog *log)
+{
+    RfRenderStats st;
+    uint64_t *cache = calloc((size_t)job->light_count + 1, sizeof *cache);
+    int x = (int)(pixel % (uint64_t)job->width), y = (int)(pixel / (uint64_t)job->width);
+    int n = RF_ON(RF_K_JITTER) && !job->centres ? job->samples : 1;
+    RfPathSample ps = {pixel, (uint32_t)(k >= 0 ? k : 0), (uint32_t)n, job->centres ? RF_SAMPLER_RANDOM : job->sampler,
+                       job->shutter_open, job->motion ? job->motion[0] : NULL, log};
+    RfRgb c = rf_rgb(0, 0, 0);
+    memset(&st, 0, sizeof st);
+    if (!cache)
+        return c;
+    rf_kernel_log(log, "camera");
+    if (n == 1) {
+        c = RF_KNAME(camera_sample)(job, x + 0.5, y + 0.5, &ps, &st, cache);
+    } else {
+        double s[2];
+        rf_sample_2d(job->sampler, ps.k, (uint32_t)n, pixel, RF_DIM_PIXEL, job->seed, s);
+        if (job->filter_box) {
+            c = RF_KNAME(camera_sample)(job, x + s[0], y + s[1], &ps, &st, cache);
+        } else {
+            double r = job->filter.radius;
+            c = RF_KNAME(camera_sample)(job, x + 0.5 + (2.0 * s[0] - 1.0) * r, y + 0.5 + (2.0 * s[1] - 1.0) * r, &ps,
+                                        &st, cache);
+        }
+    }
+    free(cache);
+    return c;
 }
 
 #undef RF_ON

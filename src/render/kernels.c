@@ -3,7 +3,12 @@
  * parts whose absence saves work, the others always compiled in. */
 #include "kernel.h"
 
+#include <float.h>
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "refray/optics.h"
 #include "refray/intersect.h"
@@ -28,6 +33,60 @@ static inline double rf_kernel_rgb_diff(RfRgb a, RfRgb b)
     for (int i = 0; i < 3; i++)
         m = d[i] > m || d[i] != d[i] ? d[i] : m;
     return m;
+}
+
+/* A radiance the film takes: finite and not negative in every channel (-0 is fine). */
+static inline int rf_kernel_rgb_valid(RfRgb c)
+{
+    return c.r >= 0.0 && c.r <= DBL_MAX && c.g >= 0.0 && c.g <= DBL_MAX && c.b >= 0.0 && c.b <= DBL_MAX;
+}
+
+/* Counts an invalid sample and keeps the thread's first (lowest pixel, then sample). */
+static void rf_kernel_note_invalid(RfRenderStats *st, int width, uint64_t pixel, int sample, RfRgb c)
+{
+    uint64_t first = (uint64_t)st->invalid.y * (uint64_t)width + (uint64_t)st->invalid.x;
+    st->invalid_samples++;
+    if (!st->invalid.found || pixel < first || (pixel == first && sample < st->invalid.sample)) {
+        st->invalid.found = 1;
+        st->invalid.x = (int)(pixel % (uint64_t)width);
+        st->invalid.y = (int)(pixel / (uint64_t)width);
+        st->invalid.sample = sample;
+        st->invalid.value[0] = c.r;
+        st->invalid.value[1] = c.g;
+        st->invalid.value[2] = c.b;
+    }
+}
+
+/* A pixel's value into the float image; one that overflows float is invalid too (black). */
+static void rf_kernel_store(const RfKernelJob *job, RfRenderStats *st, uint64_t pixel, RfRgb c)
+{
+    float *px = job->img->data + (size_t)pixel * 3;
+    px[0] = (float)c.r;
+    px[1] = (float)c.g;
+    px[2] = (float)c.b;
+    if (!isfinite(px[0]) || !isfinite(px[1]) || !isfinite(px[2])) {
+        rf_kernel_note_invalid(st, job->width, pixel, -1, c);
+        px[0] = px[1] = px[2] = 0.0f;
+    }
+}
+
+/* Appends to an explained path (kernel.h RfPathLog). */
+static void rf_kernel_log(RfPathLog *log, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    if (log->len < sizeof log->text) {
+        int n = vsnprintf(log->text + log->len, sizeof log->text - log->len, fmt, ap);
+        log->len += n > 0 ? (size_t)n : 0;
+    }
+    va_end(ap);
+}
+
+static void rf_kernel_log_hit(RfPathLog *log, const RfScene *s, const RfSurfaceHit *h)
+{
+    const RfPrimitive *p = &s->prims[h->prim];
+    rf_kernel_log(log, " -> %s #%d (line %d, material '%s')", rf_prim_type_name(p->type), h->prim, p->loc.line,
+                  s->materials[h->material].name);
 }
 
 #define RF_CAT_(a, b) a##_##b

@@ -12,9 +12,9 @@
 #include "kernel_body.h"
 #undef RF_KPARTS
 const RfKernel rf_kernels[] = {
-    {1015, tile_1015, adaptive_centres_1015, adaptive_refine_1015},
-    {1023, tile_1023, adaptive_centres_1023, adaptive_refine_1023},
-    {16375, tile_16375, adaptive_centres_16375, adaptive_refine_16375},
-    {16383, tile_16383, adaptive_centres_16383, adaptive_refine_16383},
+    {1015, tile_1015, adaptive_centres_1015, adaptive_refine_1015, explain_1015},
+    {1023, tile_1023, adaptive_centres_1023, adaptive_refine_1023, explain_1023},
+    {16375, tile_16375, adaptive_centres_16375, adaptive_refine_16375, explain_16375},
+    {16383, tile_16383, adaptive_centres_16383, adaptive_refine_16383, explain_16383},
 };
 const int rf_kernel_count = 4;

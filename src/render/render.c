@@ -232,6 +232,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     job->background = scene->render.background;
     job->ambient = scene->render.ambient;
     job->materials = scene->materials;
+    job->scene = scene;
     const RfSceneCamera *sc = &scene->camera;
     RfWindow w = rf_scene_camera_window(sc, job->width, job->height);
     st = rf_camera_init(&job->camera, sc->eye, sc->target, sc->up, w.d, w.l, w.r, w.b, w.t, job->width, job->height);
@@ -333,6 +334,24 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
         stats->secondary_rays += job->per_thread[i].secondary_rays;
         stats->invalid_samples += job->per_thread[i].invalid_samples;
         stats->adaptive_pixels += job->per_thread[i].adaptive_pixels;
+        const RfRenderStats *t = &job->per_thread[i];
+        if (t->invalid.found &&
+            (!stats->invalid.found || t->invalid.y < stats->invalid.y ||
+             (t->invalid.y == stats->invalid.y &&
+              (t->invalid.x < stats->invalid.x ||
+               (t->invalid.x == stats->invalid.x && t->invalid.sample < stats->invalid.sample)))))
+            stats->invalid = t->invalid;
+    }
+    if (st == RF_OK && stats->invalid.found) {
+        /* the first invalid sample, traced again to name its path; a reference render fails */
+        RfPathLog log;
+        log.len = 0;
+        log.text[0] = 0;
+        uint64_t pixel = (uint64_t)stats->invalid.y * (uint64_t)job->width + (uint64_t)stats->invalid.x;
+        kernel->explain(job, pixel, stats->invalid.sample, &log);
+        snprintf(stats->invalid.path, sizeof stats->invalid.path, "%s", log.text);
+        if (!opt->preview)
+            st = RF_ERR_NUMERIC;
     }
     stats->sampler = (int)res.sampler;
     stats->adaptive = res.adaptive;

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <zlib.h>
 
 #include "reader.h"
@@ -80,10 +81,17 @@ int rf__ends_with(const char *s, size_t n, const char *suffix)
     return n >= k && strncmp(s + n - k, suffix, k) == 0;
 }
 
-/* Reads a whole file (decompressing .gz) into a malloc'd buffer. */
+/* Reads a whole file (decompressing .gz) into a malloc'd buffer. Only regular files: a device
+ * (/dev/zero) would never end and a FIFO would block; and at most RF_SCENE_MAX_FILE_BYTES,
+ * decompressed, so that a gzip bomb ends with a message too. */
 static RfStatus read_file(const char *path, int gz, char **text, size_t *len, char *err,
                           size_t errsz)
 {
+    struct stat sb;
+    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+        snprintf(err, errsz, "%s:1:1: not a regular file (a directory, device or pipe)", path);
+        return RF_ERR_IO;
+    }
     gzFile f = gz ? gzopen(path, "rb") : NULL;
     FILE *pf = gz ? NULL : fopen(path, "rb");
     if (!f && !pf) {
@@ -95,6 +103,10 @@ static RfStatus read_file(const char *path, int gz, char **text, size_t *len, ch
     char *buf = malloc(cap);
     int bad = !buf;
     while (!bad) {
+        if (n >= RF_SCENE_MAX_FILE_BYTES) {
+            bad = 3;
+            break;
+        }
         if (n == cap) {
             char *b2 = cap > ((size_t)-1) / 2 ? NULL : realloc(buf, cap * 2);
             if (!b2) {
@@ -135,10 +147,13 @@ static RfStatus read_file(const char *path, int gz, char **text, size_t *len, ch
         fclose(pf);
     if (bad) {
         free(buf);
-        snprintf(err, errsz, "%s:1:1: %s%s", path,
-                 bad == 1 ? "out of memory" : gz ? "cannot decompress (corrupt gzip data)"
-                                                 : "cannot read: ",
-                 bad == 2 && !gz ? strerror(read_errno ? read_errno : EIO) : "");
+        if (bad == 3)
+            snprintf(err, errsz, "%s:1:1: larger than %d MiB%s: refused", path, RF_SCENE_MAX_FILE_BYTES >> 20,
+                     gz ? " decompressed" : "");
+        else
+            snprintf(err, errsz, "%s:1:1: %s%s", path,
+                     bad == 1 ? "out of memory" : gz ? "cannot decompress (corrupt gzip data)" : "cannot read: ",
+                     bad == 2 && !gz ? strerror(read_errno ? read_errno : EIO) : "");
         return bad == 1 ? RF_ERR_NOMEM : RF_ERR_IO;
     }
     *text = buf;

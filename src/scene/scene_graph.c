@@ -19,6 +19,7 @@
 typedef struct {
     const RfScene *scene;
     unsigned char *state; /* per object: 0 unvisited, 1 on the DFS stack, 2 done */
+    int *height;          /* per object (done): the longest chain of objects it contains, itself included */
     int *stack;           /* the objects on the DFS path, for the message */
     int depth;
     RfSrcLoc *loc;
@@ -26,11 +27,23 @@ typedef struct {
     size_t msgsz;
 } CycleSearch;
 
-/* Depth-first search from object o; a back edge (an object still on the stack) is a cycle. */
+static RfStatus too_deep(CycleSearch *cs, const RfPrimitive *p, int o)
+{
+    *cs->loc = p->loc;
+    return rf__msgf(cs->msg, cs->msgsz, RF_ERR_DOMAIN,
+                    "instances nested deeper than %d levels (through object '%s'): the limit keeps every "
+                    "tool's recursion bounded",
+                    RF_SCENE_MAX_NESTING, cs->scene->objects[o].name);
+}
+
+/* Depth-first search from object o; a back edge (an object still on the stack) is a cycle. The
+ * heights are memoised, so a DAG costs one visit per object, and the recursion stops at the
+ * nesting limit. */
 static RfStatus visit(CycleSearch *cs, int o)
 {
     const RfScene *s = cs->scene;
     const RfSceneObject *ob = &s->objects[o];
+    int h = 1;
     cs->state[o] = 1;
     cs->stack[cs->depth++] = o;
     for (size_t i = ob->first; i < ob->first + ob->count; i++) {
@@ -38,8 +51,6 @@ static RfStatus visit(CycleSearch *cs, int o)
         if (p->type != RF_PRIM_INSTANCE)
             continue;
         int c = s->instances[p->u.instance].object;
-        if (cs->state[c] == 2)
-            continue;
         if (cs->state[c] == 1) {
             /* the path from c to here, then c again */
             size_t n = 0;
@@ -56,12 +67,21 @@ static RfStatus visit(CycleSearch *cs, int o)
             *cs->loc = p->loc;
             return RF_ERR_DOMAIN;
         }
-        RfStatus st = visit(cs, c);
-        if (st)
-            return st;
+        if (cs->state[c] == 0) {
+            if (cs->depth >= RF_SCENE_MAX_NESTING)
+                return too_deep(cs, p, c);
+            RfStatus st = visit(cs, c);
+            if (st)
+                return st;
+        }
+        if (1 + cs->height[c] > h)
+            h = 1 + cs->height[c];
+        if (h > RF_SCENE_MAX_NESTING)
+            return too_deep(cs, p, c);
     }
     cs->depth--;
     cs->state[o] = 2;
+    cs->height[o] = h;
     return RF_OK;
 }
 
@@ -91,17 +111,19 @@ RfStatus rf_scene_graph_check(const RfScene *scene, RfSrcLoc *loc, char *msg, si
     memset(&cs, 0, sizeof cs);
     cs.scene = scene;
     cs.state = calloc(scene->object_count, 1);
+    cs.height = calloc(scene->object_count, sizeof *cs.height);
     cs.stack = malloc(scene->object_count * sizeof *cs.stack);
     cs.loc = loc;
     cs.msg = msg;
     cs.msgsz = msgsz;
-    RfStatus st = cs.state && cs.stack ? RF_OK : RF_ERR_NOMEM;
+    RfStatus st = cs.state && cs.height && cs.stack ? RF_OK : RF_ERR_NOMEM;
     for (size_t o = 0; !st && o < scene->object_count; o++)
         if (!cs.state[o])
             st = visit(&cs, (int)o);
     if (st == RF_ERR_NOMEM)
         rf__msgf(msg, msgsz, st, "out of memory");
     free(cs.state);
+    free(cs.height);
     free(cs.stack);
     return st;
 }
@@ -171,12 +193,22 @@ RfTriangleCount rf_scene_triangle_count(const RfScene *scene)
 static RfVec3 vmin(RfVec3 a, RfVec3 b) { return rf_vec3(fmin(a.x, b.x), fmin(a.y, b.y), fmin(a.z, b.z)); }
 static RfVec3 vmax(RfVec3 a, RfVec3 b) { return rf_vec3(fmax(a.x, b.x), fmax(a.y, b.y), fmax(a.z, b.z)); }
 
-int rf_scene_object_bounds(const RfScene *scene, int object, RfVec3 *lo, RfVec3 *hi)
+/* An object's box, memoised per object (a DAG is one visit per object, not per path): state 0
+ * not yet known, 1 bounded, 2 unbounded or empty. Recursion stops at the nesting limit. */
+typedef struct {
+    unsigned char state;
+    RfVec3 lo, hi;
+} BoxMemo;
+
+static int object_bounds(const RfScene *scene, int object, BoxMemo *memo, int depth)
 {
-    *lo = rf_vec3(INFINITY, INFINITY, INFINITY);
-    *hi = rf_vec3(-INFINITY, -INFINITY, -INFINITY);
-    if (object < 0 || (size_t)object >= scene->object_count)
+    BoxMemo *m = &memo[object];
+    if (m->state)
+        return m->state == 1;
+    m->state = 2; /* until known; a cycle (unvalidated scenes) ends here as unbounded */
+    if (depth > RF_SCENE_MAX_NESTING)
         return 0;
+    RfVec3 lo = rf_vec3(INFINITY, INFINITY, INFINITY), hi = rf_vec3(-INFINITY, -INFINITY, -INFINITY);
     const RfSceneObject *ob = &scene->objects[object];
     int any = 0;
     for (size_t i = ob->first; i < ob->first + ob->count && i < scene->prim_count; i++) {
@@ -184,35 +216,36 @@ int rf_scene_object_bounds(const RfScene *scene, int object, RfVec3 *lo, RfVec3 
         switch (p->type) {
         case RF_PRIM_SPHERE: {
             RfVec3 r = rf_vec3(p->u.sphere.radius, p->u.sphere.radius, p->u.sphere.radius);
-            *lo = vmin(*lo, rf_vec3_sub(p->u.sphere.center, r));
-            *hi = vmax(*hi, rf_vec3_add(p->u.sphere.center, r));
+            lo = vmin(lo, rf_vec3_sub(p->u.sphere.center, r));
+            hi = vmax(hi, rf_vec3_add(p->u.sphere.center, r));
             break;
         }
         case RF_PRIM_TRIANGLE:
         case RF_PRIM_POLYGON:
             for (int k = 0; k < p->u.poly.count; k++) {
-                *lo = vmin(*lo, scene->vertices[p->u.poly.first + (size_t)k]);
-                *hi = vmax(*hi, scene->vertices[p->u.poly.first + (size_t)k]);
+                lo = vmin(lo, scene->vertices[p->u.poly.first + (size_t)k]);
+                hi = vmax(hi, scene->vertices[p->u.poly.first + (size_t)k]);
             }
             break;
         case RF_PRIM_CONE: {
             double r = fmax(p->u.cone.base_radius, p->u.cone.apex_radius);
             RfVec3 e = rf_vec3(r, r, r);
-            *lo = vmin(*lo, vmin(rf_vec3_sub(p->u.cone.base, e), rf_vec3_sub(p->u.cone.apex, e)));
-            *hi = vmax(*hi, vmax(rf_vec3_add(p->u.cone.base, e), rf_vec3_add(p->u.cone.apex, e)));
+            lo = vmin(lo, vmin(rf_vec3_sub(p->u.cone.base, e), rf_vec3_sub(p->u.cone.apex, e)));
+            hi = vmax(hi, vmax(rf_vec3_add(p->u.cone.base, e), rf_vec3_add(p->u.cone.apex, e)));
             break;
         }
         case RF_PRIM_INSTANCE: {
             const RfInstance *in = &scene->instances[p->u.instance];
-            RfVec3 ol, oh;
-            if (in->object == object || !rf_scene_object_bounds(scene, in->object, &ol, &oh))
+            if (in->object < 0 || (size_t)in->object >= scene->object_count ||
+                !object_bounds(scene, in->object, memo, depth + 1))
                 return 0;
+            RfVec3 ol = memo[in->object].lo, oh = memo[in->object].hi;
             for (int c = 0; c < 8; c++) { /* the 8 corners of the child's box */
                 RfVec3 k = rf_vec3(c & 1 ? oh.x : ol.x, c & 2 ? oh.y : ol.y, c & 4 ? oh.z : ol.z);
                 if (rf_transform_point(in->to_world, k, &k) != RF_OK)
                     return 0;
-                *lo = vmin(*lo, k);
-                *hi = vmax(*hi, k);
+                lo = vmin(lo, k);
+                hi = vmax(hi, k);
             }
             break;
         }
@@ -222,7 +255,28 @@ int rf_scene_object_bounds(const RfScene *scene, int object, RfVec3 *lo, RfVec3 
         }
         any = 1;
     }
+    if (any) {
+        m->state = 1;
+        m->lo = lo;
+        m->hi = hi;
+    }
     return any;
+}
+
+int rf_scene_object_bounds(const RfScene *scene, int object, RfVec3 *lo, RfVec3 *hi)
+{
+    *lo = rf_vec3(INFINITY, INFINITY, INFINITY);
+    *hi = rf_vec3(-INFINITY, -INFINITY, -INFINITY);
+    if (object < 0 || (size_t)object >= scene->object_count)
+        return 0;
+    BoxMemo *memo = calloc(scene->object_count, sizeof *memo);
+    int ok = memo && object_bounds(scene, object, memo, 1);
+    if (ok) {
+        *lo = memo[object].lo;
+        *hi = memo[object].hi;
+    }
+    free(memo);
+    return ok;
 }
 
 /* ---- flattening ---------------------------------------------------------------------------- */
@@ -363,16 +417,18 @@ int rf_scene_bounds(const RfScene *scene, RfVec3 *lo, RfVec3 *hi)
     *lo = rf_vec3(INFINITY, INFINITY, INFINITY);
     *hi = rf_vec3(-INFINITY, -INFINITY, -INFINITY);
     int any = 0;
+    BoxMemo *memo = scene->object_count ? calloc(scene->object_count, sizeof *memo) : NULL;
     for (size_t i = 0; i < scene->prim_count; i++) {
         const RfPrimitive *p = &scene->prims[i];
         if (p->flags & RF_PRIM_IN_OBJECT) /* seen only through instances */
             continue;
         switch (p->type) {
         case RF_PRIM_INSTANCE: {
-            RfVec3 ol, oh;
             const RfInstance *in = &scene->instances[p->u.instance];
-            if (!rf_scene_object_bounds(scene, in->object, &ol, &oh))
+            if (!memo || in->object < 0 || (size_t)in->object >= scene->object_count ||
+                !object_bounds(scene, in->object, memo, 1))
                 break;
+            RfVec3 ol = memo[in->object].lo, oh = memo[in->object].hi;
             for (int c = 0; c < 8; c++) { /* the 8 corners of the object box */
                 RfVec3 k = rf_vec3(c & 1 ? oh.x : ol.x, c & 2 ? oh.y : ol.y, c & 4 ? oh.z : ol.z);
                 if (rf_transform_point(in->to_world, k, &k) == RF_OK)
@@ -401,5 +457,6 @@ int rf_scene_bounds(const RfScene *scene, RfVec3 *lo, RfVec3 *hi)
             break;
         }
     }
+    free(memo);
     return any;
 }

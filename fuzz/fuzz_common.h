@@ -1,0 +1,398 @@
+/* refray fuzzing: what every harness (fuzz/fuzz_*.c) and the regression test
+ * (tests/test_fuzz_regress.c) do with an input, so that a reproducer kept under
+ * tests/data/fuzz/<target>/ runs exactly the code that the fuzzer ran.
+ *
+ *   rf_fuzz_run(target, bytes, size, dir)   one input through the reader of target ("nff",
+ *                                           "rf", "obj", "mtl", "exr", "png", "formula") and,
+ *                                           when it parses, through validation, the analysis,
+ *                                           the tracer and a tiny render (bounded work)
+ *   rf_fuzz_sandbox(dir, size, scenes)      a fresh folder under /tmp holding copies of the
+ *                                           files that scenes may name (gem.obj, gem.mtl,
+ *                                           torus.obj): OBJ and .rf inputs are read as
+ *                                           "<dir>/fuzz.obj" etc., so relative mtllib/mesh
+ *                                           paths resolve there
+ *
+ * Header-only (static functions) so that the test build needs no extra object; C99, clean
+ * under the project's -Wall -Wextra -Wpedantic -Werror. */
+#ifndef RF_FUZZ_COMMON_H
+#define RF_FUZZ_COMMON_H
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "refray/diff.h"
+#include "refray/formula.h"
+#include "refray/image.h"
+#include "refray/render.h"
+#include "refray/scene.h"
+#include "refray/scene_io.h"
+
+/* Work bounds: a parsed scene larger than this is checked but not traced (the BVH build and
+ * the rays would take too long per input); images larger than this are read but not diffed. */
+#define RF_FUZZ_MAX_ITEMS 20000
+#define RF_FUZZ_MAX_DIFF_PIXELS 4096
+/* the tiny render */
+#define RF_FUZZ_RENDER_W 4
+#define RF_FUZZ_RENDER_H 3
+
+/* Copies src to dir/name; 0 on success. */
+static int rf_fuzz_copy(const char *src, const char *dir, const char *name)
+{
+    char dst[4096];
+    char buf[1 << 14];
+    size_t k;
+    int ok = 1;
+    snprintf(dst, sizeof dst, "%s/%s", dir, name);
+    FILE *in = fopen(src, "rb");
+    if (!in)
+        return -1;
+    FILE *out = fopen(dst, "wb");
+    if (!out) {
+        fclose(in);
+        return -1;
+    }
+    while ((k = fread(buf, 1, sizeof buf, in)) > 0)
+        if (fwrite(buf, 1, k, out) != k)
+            ok = 0;
+    fclose(in);
+    if (fclose(out) != 0)
+        ok = 0;
+    return ok ? 0 : -1;
+}
+
+/* The files that a fuzzed scene may refer to by a relative name. */
+static const char *const rf_fuzz_sandbox_files[] = {"gem.obj", "gem.mtl", "torus.obj"};
+
+/* Makes a fresh folder /tmp/refray-fuzz-XXXXXX (or under $TMPDIR) with copies of the files
+ * above from the folder `scenes` (a missing one is skipped). dir gets the folder's name;
+ * 0 on success. */
+static int rf_fuzz_sandbox(char *dir, size_t size, const char *scenes)
+{
+    const char *tmp = getenv("TMPDIR");
+    char src[4096];
+    snprintf(dir, size, "%s/refray-fuzz-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+    if (!mkdtemp(dir))
+        return -1;
+    for (size_t i = 0; i < sizeof rf_fuzz_sandbox_files / sizeof rf_fuzz_sandbox_files[0]; i++) {
+        snprintf(src, sizeof src, "%s/%s", scenes, rf_fuzz_sandbox_files[i]);
+        (void)rf_fuzz_copy(src, dir, rf_fuzz_sandbox_files[i]);
+    }
+    return 0;
+}
+
+/* Removes the sandbox folder and what the harnesses put in it. */
+static void rf_fuzz_sandbox_remove(const char *dir)
+{
+    static const char *const extra[] = {"input.exr", "input.png", "out.png", "out.exr"};
+    char p[4096];
+    for (size_t i = 0; i < sizeof rf_fuzz_sandbox_files / sizeof rf_fuzz_sandbox_files[0]; i++) {
+        snprintf(p, sizeof p, "%s/%s", dir, rf_fuzz_sandbox_files[i]);
+        (void)unlink(p);
+    }
+    for (size_t i = 0; i < sizeof extra / sizeof extra[0]; i++) {
+        snprintf(p, sizeof p, "%s/%s", dir, extra[i]);
+        (void)unlink(p);
+    }
+    (void)rmdir(dir);
+}
+
+/* A few rays through the tracer: from the centre of the bounds and from the camera, along the
+ * axes and the diagonals, as nearest-hit and occlusion queries. */
+static void rf_fuzz_rays(const RfScene *s, const RfTracer *tr)
+{
+    RfVec3 lo, hi, origins[3];
+    int n = 0;
+    if (rf_scene_bounds(s, &lo, &hi)) {
+        origins[n++] = rf_vec3(0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z));
+        origins[n++] = rf_vec3(lo.x - 1.0, hi.y + 1.0, lo.z - 1.0);
+    }
+    if (s->has_camera)
+        origins[n++] = s->camera.eye;
+    static const double dirs[][3] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},   {0, -1, 0},
+                                     {0, 0, 1},  {0, 0, -1}, {1, 1, 1},   {-1, -1, -1},
+                                     {1, -2, 3}, {0.3, 0.4, -1}};
+    for (int o = 0; o < n; o++)
+        for (size_t d = 0; d < sizeof dirs / sizeof dirs[0]; d++) {
+            RfVec3 dir = rf_vec3(dirs[d][0], dirs[d][1], dirs[d][2]);
+            double len = sqrt(dir.x * dir.x + dir.y * dir.y + dir.z * dir.z);
+            RfRay ray = rf_ray(origins[o], rf_vec3(dir.x / len, dir.y / len, dir.z / len));
+            RfSurfaceHit hit;
+            uint64_t last = 0;
+            (void)rf_tracer_intersect(tr, ray, 0.0, INFINITY, &hit);
+            (void)rf_tracer_occluded(tr, ray, 1e-9, 1e30);
+            (void)rf_tracer_occluded_cached(tr, ray, 0.0, INFINITY, &last);
+        }
+}
+
+/* What the commands do with a parsed scene (refray info, refray render), bounded. */
+static void rf_fuzz_scene(const RfScene *s)
+{
+    char err[512];
+    RfVec3 lo, hi;
+    (void)rf_scene_features(s);
+    (void)rf_scene_triangle_count(s);
+    (void)rf_scene_bounds(s, &lo, &hi);
+    if (rf_scene_validate(s, "fuzz", err, sizeof err) != RF_OK)
+        return;
+    if (s->has_camera)
+        (void)rf_scene_camera_window(&s->camera, RF_FUZZ_RENDER_W, RF_FUZZ_RENDER_H);
+    size_t items = s->prim_count + s->vertex_count / 3 + s->instance_count + s->light_count;
+    if (items > RF_FUZZ_MAX_ITEMS)
+        return;
+    for (size_t i = 0; i < s->object_count; i++)
+        (void)rf_scene_object_bounds(s, (int)i, &lo, &hi);
+
+    RfTracerOptions topt = rf_tracer_options_default();
+    topt.threads = 1;
+    RfTracer *tr = NULL;
+    if (rf_tracer_create_opts(s, &topt, &tr) == RF_OK && tr) {
+        (void)rf_tracer_bytes(tr);
+        rf_fuzz_rays(s, tr);
+        rf_tracer_free(tr);
+    }
+
+    /* the render: the scene's sampling and kernel choice, at a tiny size and with the sample
+     * counts capped (a scene may ask for thousands per pixel or per light) */
+    RfRenderOptions ro = rf_render_options_default();
+    ro.width = RF_FUZZ_RENDER_W;
+    ro.height = RF_FUZZ_RENDER_H;
+    ro.threads = 1;
+    ro.accel.threads = 1;
+    ro.max_depth = s->render.max_depth > 4 || s->render.max_depth < 1 ? 4 : s->render.max_depth;
+    ro.samples = s->render.samples > 4 || s->render.samples < 1 ? 4 : s->render.samples;
+    ro.adaptive_depth = s->render.adaptive_depth > 2 || s->render.adaptive_depth < 0 ? 2 : s->render.adaptive_depth;
+    for (size_t i = 0; i < s->light_count; i++)
+        if (s->lights[i].samples > 4)
+            ro.light_samples = 4;
+    RfImage img = {0, 0, 0, NULL};
+    RfRenderStats st;
+    if (rf_render(s, &ro, &img, &st) == RF_OK)
+        (void)rf_kernel_name(st.kernel, err, sizeof err);
+    rf_image_free(&img);
+    /* the general kernel, one sample, no adaptive sampling: the same image, another code path */
+    ro.kernel = rf_kernel_parse("general");
+    ro.samples = 1;
+    ro.adaptive = 0;
+    ro.width = 2;
+    ro.height = 2;
+    if (ro.kernel && rf_render(s, &ro, &img, &st) == RF_OK)
+        rf_image_free(&img);
+    rf_image_free(&img);
+}
+
+/* The MTL harness: the materials read into a scene with a camera, a light and a sphere and a
+ * triangle for each (of the first 16) materials, so that the renderer shades with them. */
+static void rf_fuzz_mtl_scene(RfScene *s)
+{
+    char msg[256];
+    size_t nm = s->material_count < 16 ? s->material_count : 16;
+    s->has_camera = 1;
+    s->camera.eye = rf_vec3(0, 0, 5);
+    s->camera.target = rf_vec3(0, 0, 0);
+    s->camera.up = rf_vec3(0, 1, 0);
+    s->camera.d = 1.0;
+    s->camera.has_window = 0;
+    s->camera.fov = 60.0;
+    s->render.ambient = rf_rgb(0.1, 0.1, 0.1);
+    RfLight l;
+    memset(&l, 0, sizeof l);
+    l.kind = RF_LIGHT_POINT;
+    l.position = rf_vec3(2, 3, 4);
+    l.intensity = rf_rgb(10, 10, 10);
+    l.direction = rf_vec3(0, -1, 0);
+    l.samples = 1;
+    (void)rf_scene_add_light(s, &l);
+    for (size_t i = 0; i < nm; i++) {
+        double x = -1.5 + 3.0 * (double)i / 16.0;
+        RfPrimitive p;
+        memset(&p, 0, sizeof p);
+        p.type = RF_PRIM_SPHERE;
+        p.material = (int)i;
+        p.u.sphere.center = rf_vec3(x, 0.5, 0);
+        p.u.sphere.radius = 0.3;
+        (void)rf_scene_add_primitive(s, &p, msg, sizeof msg);
+        RfVec3 v[3] = {rf_vec3(x - 0.3, -1, 0.2), rf_vec3(x + 0.3, -1, 0.2), rf_vec3(x, -0.4, 0.2)};
+        size_t first = 0, nfirst = 0;
+        if (rf_scene_add_vertices(s, v, NULL, 3, &first, &nfirst) == RF_OK) {
+            memset(&p, 0, sizeof p);
+            p.type = RF_PRIM_TRIANGLE;
+            p.material = (int)i;
+            p.flags = RF_PRIM_TWO_SIDED;
+            p.u.poly.first = first;
+            p.u.poly.nfirst = nfirst;
+            p.u.poly.count = 3;
+            (void)rf_scene_add_primitive(s, &p, msg, sizeof msg);
+        }
+    }
+    rf_fuzz_scene(s);
+}
+
+/* An image as `refray diff` uses it: compared with itself and with a copy shifted by one
+ * channel value, heatmaps, a silhouette mask for one-channel (depth) images, and written back
+ * as PNG and EXR into dir. */
+static void rf_fuzz_image(const RfImage *img, const char *dir)
+{
+    char err[512], path[4096];
+    if (!img->data || (size_t)img->width * (size_t)img->height > RF_FUZZ_MAX_DIFF_PIXELS)
+        return;
+    RfDiffOptions o = rf_diff_options_default();
+    RfDiffResult res;
+    size_t px = (size_t)img->width * (size_t)img->height;
+    unsigned char *mask = calloc(px, 1);
+    RfImage heat = {0, 0, 0, NULL}, b = {0, 0, 0, NULL};
+    if (!mask)
+        return;
+    if (rf_image_alloc(&b, img->width, img->height, img->channels) == RF_OK) {
+        for (size_t i = 0; i < px * (size_t)img->channels; i++)
+            b.data[i] = img->data[i] * 0.5f + 0.25f;
+        if (img->channels == 1) {
+            rf_diff_silhouettes(img, o.depth_edge, mask);
+            (void)rf_diff_images(img, &b, img, &b, &o, &res, mask, err, sizeof err);
+            if (rf_diff_depth_heatmap(img, &b, mask, &heat) == RF_OK)
+                rf_image_free(&heat);
+        } else {
+            (void)rf_diff_images(img, &b, NULL, NULL, &o, &res, mask, err, sizeof err);
+            (void)rf_diff_images(img, img, NULL, NULL, &o, &res, NULL, err, sizeof err);
+            (void)rf_diff_percent(res.all.above_fail, &res.all);
+            if (rf_diff_heatmap(img, &b, mask, &heat) == RF_OK)
+                rf_image_free(&heat);
+        }
+        rf_image_free(&b);
+    }
+    free(mask);
+    RfPngOptions po = {RF_PNG_SRGB, 2.2, 8};
+    snprintf(path, sizeof path, "%s/out.png", dir);
+    (void)rf_png_write(path, img, po, err, sizeof err);
+    snprintf(path, sizeof path, "%s/out.exr", dir);
+    (void)rf_exr_write(path, img, NULL, 0, err, sizeof err);
+}
+
+/* Writes the bytes to dir/name; 0 on success. */
+static int rf_fuzz_write(const char *dir, const char *name, const uint8_t *data, size_t size, char *path,
+                         size_t pathsz)
+{
+    snprintf(path, pathsz, "%s/%s", dir, name);
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return -1;
+    int ok = fwrite(data, 1, size, f) == size;
+    return fclose(f) == 0 && ok ? 0 : -1;
+}
+
+/* The formula front ends: the batch on the bytes as JSON lines, and the bytes split at blanks
+ * as the command line `refray formula ID key=value ...`. */
+static void rf_fuzz_formula(const uint8_t *data, size_t size)
+{
+    static FILE *devnull;
+    if (!devnull)
+        devnull = fopen("/dev/null", "w");
+    if (size > 0 && devnull) {
+        FILE *in = fmemopen((void *)data, size, "r");
+        if (in) {
+            (void)rf_formula_batch(in, devnull);
+            fclose(in);
+        }
+    }
+    /* the command line */
+    char *text = malloc(size + 1);
+    char **argv = malloc((size / 2 + 2) * sizeof *argv);
+    if (text && argv) {
+        int argc = 0;
+        memcpy(text, data, size);
+        text[size] = 0;
+        for (char *p = text; *p;) {
+            while (*p == ' ' || *p == '\n' || *p == '\t')
+                *p++ = 0;
+            if (!*p)
+                break;
+            argv[argc++] = p;
+            while (*p && *p != ' ' && *p != '\n' && *p != '\t')
+                p++;
+        }
+        const RfFormula *f = argc > 0 ? rf_formula_find(argv[0]) : NULL;
+        if (f) {
+            char err[512];
+            char *in = rf_formula_args_to_json(argc - 1, argv + 1, err, sizeof err);
+            if (in) {
+                char *out = NULL;
+                (void)rf_formula_run_json(f, in, &out);
+                free(out);
+                free(in);
+            }
+        }
+    }
+    free(argv);
+    free(text);
+}
+
+/* One input of one target; returns the reader's status (RF_OK for the formula target). */
+static RfStatus rf_fuzz_run(const char *target, const uint8_t *data, size_t size, const char *dir)
+{
+    char err[1024], name[4096];
+    RfStatus st = RF_OK;
+    if (strcmp(target, "formula") == 0) {
+        rf_fuzz_formula(data, size);
+        return RF_OK;
+    }
+    if (strcmp(target, "exr") == 0 || strcmp(target, "png") == 0) {
+        int exr = target[0] == 'e';
+        RfImage img = {0, 0, 0, NULL};
+        RfPngOptions dec = {RF_PNG_GAMMA, 2.2, 8};
+        if (rf_fuzz_write(dir, exr ? "input.exr" : "input.png", data, size, name, sizeof name))
+            return RF_ERR_IO;
+        /* as `refray diff` reads it (by signature), then by the reader itself */
+        if (rf_image_read(name, dec, &img, err, sizeof err) == RF_OK)
+            rf_fuzz_image(&img, dir);
+        rf_image_free(&img);
+        if (exr) {
+            char *v = NULL;
+            st = rf_exr_read(name, &img, err, sizeof err);
+            if (rf_exr_read_attr(name, "refray:version", &v, err, sizeof err) == RF_OK)
+                free(v);
+        } else {
+            dec.encoding = RF_PNG_SRGB;
+            dec.bits = 16;
+            st = rf_png_read(name, dec, &img, err, sizeof err);
+        }
+        rf_image_free(&img);
+        return st;
+    }
+    RfScene scene;
+    RfLoadOptions lo = rf_load_options_default();
+    rf_scene_init(&scene);
+    snprintf(name, sizeof name, "%s/fuzz.%s", dir, target);
+    if (strcmp(target, "nff") == 0) {
+        st = rf_scene_read_nff(name, (const char *)data, size, &lo, &scene, err, sizeof err);
+        if (st == RF_OK)
+            rf_fuzz_scene(&scene);
+        rf_scene_free(&scene);
+        /* the other field-of-view reading: another camera window */
+        rf_scene_init(&scene);
+        lo.nff_fov = RF_FOV_EDGES;
+        if (rf_scene_read_nff(name, (const char *)data, size, &lo, &scene, err, sizeof err) == RF_OK &&
+            scene.has_camera)
+            (void)rf_scene_camera_window(&scene.camera, 3, 2);
+    } else if (strcmp(target, "rf") == 0) {
+        st = rf_scene_read_rf(name, (const char *)data, size, &scene, err, sizeof err);
+        if (st == RF_OK)
+            rf_fuzz_scene(&scene);
+    } else if (strcmp(target, "obj") == 0) {
+        st = rf_scene_read_obj(name, (const char *)data, size, &lo, &scene, err, sizeof err);
+        if (st == RF_OK)
+            rf_fuzz_scene(&scene);
+    } else if (strcmp(target, "mtl") == 0) {
+        st = rf_scene_read_mtl(name, (const char *)data, size, &scene, err, sizeof err);
+        if (st == RF_OK)
+            rf_fuzz_mtl_scene(&scene);
+    } else {
+        st = RF_ERR_DOMAIN;
+    }
+    rf_scene_free(&scene);
+    return st;
+}
+
+#endif
