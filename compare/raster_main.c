@@ -32,7 +32,7 @@ int main(int argc, char **argv)
     const char *scene_path = NULL, *exr = NULL, *depth_out = NULL, *png = NULL;
     RfRasterOptions opt = {0, 0, RF_SHADE_PHONG};
     RfLoadOptions lopt = rf_load_options_default();
-    RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8};
+    RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int ok = 1, shared, used;

@@ -39,14 +39,22 @@
 #define RF_FUZZ_RENDER_W 4
 #define RF_FUZZ_RENDER_H 3
 
+/* dir/name into out; 0 on success, -1 when it does not fit. */
+static inline int rf_fuzz_path(char *out, size_t size, const char *dir, const char *name)
+{
+    int n = snprintf(out, size, "%s/%s", dir, name);
+    return n >= 0 && (size_t)n < size ? 0 : -1;
+}
+
 /* Copies src to dir/name; 0 on success. */
-static int rf_fuzz_copy(const char *src, const char *dir, const char *name)
+static inline int rf_fuzz_copy(const char *src, const char *dir, const char *name)
 {
     char dst[4096];
     char buf[1 << 14];
     size_t k;
     int ok = 1;
-    snprintf(dst, sizeof dst, "%s/%s", dir, name);
+    if (rf_fuzz_path(dst, sizeof dst, dir, name))
+        return -1;
     FILE *in = fopen(src, "rb");
     if (!in)
         return -1;
@@ -70,39 +78,35 @@ static const char *const rf_fuzz_sandbox_files[] = {"gem.obj", "gem.mtl", "torus
 /* Makes a fresh folder /tmp/refray-fuzz-XXXXXX (or under $TMPDIR) with copies of the files
  * above from the folder `scenes` (a missing one is skipped). dir gets the folder's name;
  * 0 on success. */
-static int rf_fuzz_sandbox(char *dir, size_t size, const char *scenes)
+static inline int rf_fuzz_sandbox(char *dir, size_t size, const char *scenes)
 {
     const char *tmp = getenv("TMPDIR");
     char src[4096];
-    snprintf(dir, size, "%s/refray-fuzz-XXXXXX", tmp && *tmp ? tmp : "/tmp");
-    if (!mkdtemp(dir))
+    if (rf_fuzz_path(dir, size, tmp && *tmp ? tmp : "/tmp", "refray-fuzz-XXXXXX") || !mkdtemp(dir))
         return -1;
-    for (size_t i = 0; i < sizeof rf_fuzz_sandbox_files / sizeof rf_fuzz_sandbox_files[0]; i++) {
-        snprintf(src, sizeof src, "%s/%s", scenes, rf_fuzz_sandbox_files[i]);
-        (void)rf_fuzz_copy(src, dir, rf_fuzz_sandbox_files[i]);
-    }
+    for (size_t i = 0; i < sizeof rf_fuzz_sandbox_files / sizeof rf_fuzz_sandbox_files[0]; i++)
+        if (rf_fuzz_path(src, sizeof src, scenes, rf_fuzz_sandbox_files[i]) == 0)
+            (void)rf_fuzz_copy(src, dir, rf_fuzz_sandbox_files[i]);
     return 0;
 }
 
 /* Removes the sandbox folder and what the harnesses put in it. */
-static void rf_fuzz_sandbox_remove(const char *dir)
+static inline void rf_fuzz_sandbox_remove(const char *dir)
 {
     static const char *const extra[] = {"input.exr", "input.png", "out.png", "out.exr"};
     char p[4096];
-    for (size_t i = 0; i < sizeof rf_fuzz_sandbox_files / sizeof rf_fuzz_sandbox_files[0]; i++) {
-        snprintf(p, sizeof p, "%s/%s", dir, rf_fuzz_sandbox_files[i]);
-        (void)unlink(p);
-    }
-    for (size_t i = 0; i < sizeof extra / sizeof extra[0]; i++) {
-        snprintf(p, sizeof p, "%s/%s", dir, extra[i]);
-        (void)unlink(p);
-    }
+    for (size_t i = 0; i < sizeof rf_fuzz_sandbox_files / sizeof rf_fuzz_sandbox_files[0]; i++)
+        if (rf_fuzz_path(p, sizeof p, dir, rf_fuzz_sandbox_files[i]) == 0)
+            (void)unlink(p);
+    for (size_t i = 0; i < sizeof extra / sizeof extra[0]; i++)
+        if (rf_fuzz_path(p, sizeof p, dir, extra[i]) == 0)
+            (void)unlink(p);
     (void)rmdir(dir);
 }
 
 /* A few rays through the tracer: from the centre of the bounds and from the camera, along the
  * axes and the diagonals, as nearest-hit and occlusion queries. */
-static void rf_fuzz_rays(const RfScene *s, const RfTracer *tr)
+static inline void rf_fuzz_rays(const RfScene *s, const RfTracer *tr)
 {
     RfVec3 lo, hi, origins[3];
     int n = 0;
@@ -129,7 +133,7 @@ static void rf_fuzz_rays(const RfScene *s, const RfTracer *tr)
 }
 
 /* What the commands do with a parsed scene (refray info, refray render), bounded. */
-static void rf_fuzz_scene(const RfScene *s)
+static inline void rf_fuzz_scene(const RfScene *s)
 {
     char err[512];
     RfVec3 lo, hi;
@@ -173,8 +177,10 @@ static void rf_fuzz_scene(const RfScene *s)
     if (rf_render(s, &ro, &img, &st) == RF_OK)
         (void)rf_kernel_name(st.kernel, err, sizeof err);
     rf_image_free(&img);
-    /* the general kernel, one sample, no adaptive sampling: the same image, another code path */
+    /* the general kernel, one sample, no adaptive sampling, as a preview (non-finite samples
+     * counted, not an error): the same image, another code path */
     ro.kernel = rf_kernel_parse("general");
+    ro.preview = 1;
     ro.samples = 1;
     ro.adaptive = 0;
     ro.width = 2;
@@ -186,7 +192,7 @@ static void rf_fuzz_scene(const RfScene *s)
 
 /* The MTL harness: the materials read into a scene with a camera, a light and a sphere and a
  * triangle for each (of the first 16) materials, so that the renderer shades with them. */
-static void rf_fuzz_mtl_scene(RfScene *s)
+static inline void rf_fuzz_mtl_scene(RfScene *s)
 {
     char msg[256];
     size_t nm = s->material_count < 16 ? s->material_count : 16;
@@ -234,7 +240,7 @@ static void rf_fuzz_mtl_scene(RfScene *s)
 /* An image as `refray diff` uses it: compared with itself and with a copy shifted by one
  * channel value, heatmaps, a silhouette mask for one-channel (depth) images, and written back
  * as PNG and EXR into dir. */
-static void rf_fuzz_image(const RfImage *img, const char *dir)
+static inline void rf_fuzz_image(const RfImage *img, const char *dir)
 {
     char err[512], path[4096];
     if (!img->data || (size_t)img->width * (size_t)img->height > RF_FUZZ_MAX_DIFF_PIXELS)
@@ -264,18 +270,19 @@ static void rf_fuzz_image(const RfImage *img, const char *dir)
         rf_image_free(&b);
     }
     free(mask);
-    RfPngOptions po = {RF_PNG_SRGB, 2.2, 8};
-    snprintf(path, sizeof path, "%s/out.png", dir);
-    (void)rf_png_write(path, img, po, err, sizeof err);
-    snprintf(path, sizeof path, "%s/out.exr", dir);
-    (void)rf_exr_write(path, img, NULL, 0, err, sizeof err);
+    RfPngOptions po = {RF_PNG_SRGB, 2.2, 8, NULL};
+    if (rf_fuzz_path(path, sizeof path, dir, "out.png") == 0)
+        (void)rf_png_write(path, img, po, err, sizeof err);
+    if (rf_fuzz_path(path, sizeof path, dir, "out.exr") == 0)
+        (void)rf_exr_write(path, img, NULL, 0, err, sizeof err);
 }
 
 /* Writes the bytes to dir/name; 0 on success. */
-static int rf_fuzz_write(const char *dir, const char *name, const uint8_t *data, size_t size, char *path,
+static inline int rf_fuzz_write(const char *dir, const char *name, const uint8_t *data, size_t size, char *path,
                          size_t pathsz)
 {
-    snprintf(path, pathsz, "%s/%s", dir, name);
+    if (rf_fuzz_path(path, pathsz, dir, name))
+        return -1;
     FILE *f = fopen(path, "wb");
     if (!f)
         return -1;
@@ -285,7 +292,7 @@ static int rf_fuzz_write(const char *dir, const char *name, const uint8_t *data,
 
 /* The formula front ends: the batch on the bytes as JSON lines, and the bytes split at blanks
  * as the command line `refray formula ID key=value ...`. */
-static void rf_fuzz_formula(const uint8_t *data, size_t size)
+static inline void rf_fuzz_formula(const uint8_t *data, size_t size)
 {
     static FILE *devnull;
     if (!devnull)
@@ -330,7 +337,7 @@ static void rf_fuzz_formula(const uint8_t *data, size_t size)
 }
 
 /* One input of one target; returns the reader's status (RF_OK for the formula target). */
-static RfStatus rf_fuzz_run(const char *target, const uint8_t *data, size_t size, const char *dir)
+static inline RfStatus rf_fuzz_run(const char *target, const uint8_t *data, size_t size, const char *dir)
 {
     char err[1024], name[4096];
     RfStatus st = RF_OK;
@@ -341,7 +348,7 @@ static RfStatus rf_fuzz_run(const char *target, const uint8_t *data, size_t size
     if (strcmp(target, "exr") == 0 || strcmp(target, "png") == 0) {
         int exr = target[0] == 'e';
         RfImage img = {0, 0, 0, NULL};
-        RfPngOptions dec = {RF_PNG_GAMMA, 2.2, 8};
+        RfPngOptions dec = {RF_PNG_GAMMA, 2.2, 8, NULL};
         if (rf_fuzz_write(dir, exr ? "input.exr" : "input.png", data, size, name, sizeof name))
             return RF_ERR_IO;
         /* as `refray diff` reads it (by signature), then by the reader itself */
@@ -364,7 +371,10 @@ static RfStatus rf_fuzz_run(const char *target, const uint8_t *data, size_t size
     RfScene scene;
     RfLoadOptions lo = rf_load_options_default();
     rf_scene_init(&scene);
-    snprintf(name, sizeof name, "%s/fuzz.%s", dir, target);
+    char base[16];
+    snprintf(base, sizeof base, "fuzz.%.8s", target);
+    if (rf_fuzz_path(name, sizeof name, dir, base))
+        return RF_ERR_IO;
     if (strcmp(target, "nff") == 0) {
         st = rf_scene_read_nff(name, (const char *)data, size, &lo, &scene, err, sizeof err);
         if (st == RF_OK)

@@ -161,7 +161,7 @@ static void test_diff_exit_codes(void)
     RF_CHECK(strstr(out, "space=linear") != NULL);
     RfImage g;
     char png[64], exr[64], err[256];
-    RfPngOptions po = {RF_PNG_GAMMA, 2.2, 8};
+    RfPngOptions po = {RF_PNG_GAMMA, 2.2, 8, NULL};
     rf_image_alloc(&g, 64, 4, 3);
     for (int i = 0; i < 64 * 4 * 3; i++)
         g.data[i] = (float)(i % 192) / 191.0f;

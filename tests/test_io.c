@@ -116,7 +116,7 @@ static int starts_with(const char *s, const char *prefix)
     return strncmp(s, prefix, strlen(prefix)) == 0;
 }
 
-static const RfPngOptions as_is8 = {RF_PNG_AS_IS, 0.0, 8};
+static const RfPngOptions as_is8 = {RF_PNG_AS_IS, 0.0, 8, NULL};
 
 /* Floats that stress an exact round trip: signed zeros, denormals, extremes, infinities, NaN. */
 static float special_value(size_t i)
@@ -160,7 +160,7 @@ static void test_write_bad_images(void)
     TmpDir t;
     RfImage img = {0, 0, 3, NULL};
     float px[12] = {0};
-    RfPngOptions o = {RF_PNG_GAMMA, 2.2, 8};
+    RfPngOptions o = {RF_PNG_GAMMA, 2.2, 8, NULL};
     char err[512];
     if (!tmp_open(&t)) {
         RF_CHECK(0);
@@ -231,7 +231,7 @@ static void exr_roundtrip(TmpDir *t, int w, int h, int channels, RfExrOptions op
 static void test_exr_roundtrip_exact(void)
 {
     TmpDir t;
-    RfExrOptions zip = {RF_EXR_ZIP, 0}, none = {RF_EXR_NONE, 0}, piz = {RF_EXR_PIZ, 0};
+    RfExrOptions zip = {RF_EXR_ZIP, 0, NULL}, none = {RF_EXR_NONE, 0, NULL}, piz = {RF_EXR_PIZ, 0, NULL};
     int c;
     if (!tmp_open(&t)) {
         RF_CHECK(0);
@@ -283,7 +283,7 @@ static void test_exr_half(void)
 {
     TmpDir t;
     RfImage img, back = {0, 0, 0, NULL};
-    RfExrOptions half = {RF_EXR_ZIP, 1};
+    RfExrOptions half = {RF_EXR_ZIP, 1, NULL};
     const float exact[] = {0.0f, 0.5f, 1.0f, -2.0f, 65504.0f, 0.25f, 1024.0f, -0.125f, 3.0f};
     char err[512];
     const char *path;
@@ -316,7 +316,7 @@ static void test_exr_half(void)
     /* The stored type really is HALF: the file is smaller than the FLOAT one. */
     {
         long hs = file_size(path), fs;
-        RfExrOptions full = {RF_EXR_ZIP, 0};
+        RfExrOptions full = {RF_EXR_ZIP, 0, NULL};
         RF_CHECK_EQ_INT(rf_exr_write_opts(path, &img, NULL, 0, full, err, sizeof err), RF_OK);
         fs = file_size(path);
         RF_CHECK(hs > 0 && fs > hs);
@@ -527,7 +527,7 @@ static void png_codes(TmpDir *t, const double *v, int n, RfPngOptions opt, long 
     RfImage img, back = {0, 0, 0, NULL};
     char err[512], path[512];
     double max = opt.bits == 16 ? 65535.0 : 255.0;
-    RfPngOptions raw = {RF_PNG_AS_IS, 0.0, opt.bits};
+    RfPngOptions raw = {RF_PNG_AS_IS, 0.0, opt.bits, NULL};
     int i;
     snprintf(path, sizeof path, "%s", tmp_path(t, "codes.png"));
     for (i = 0; i < n; i++)
@@ -553,7 +553,7 @@ static void test_png_codes_8bit(void)
     TmpDir t;
     const double v[] = {0.5, 0.0, 1.0, 0.0031308, 0.00313081, 0.18, -1.0, 2.0, NAN, INFINITY, 0.25};
     long c[sizeof v / sizeof v[0]];
-    RfPngOptions gamma = {RF_PNG_GAMMA, 2.2, 8}, srgb = {RF_PNG_SRGB, 0.0, 8}, asis = {RF_PNG_AS_IS, 0.0, 8};
+    RfPngOptions gamma = {RF_PNG_GAMMA, 2.2, 8, NULL}, srgb = {RF_PNG_SRGB, 0.0, 8, NULL}, asis = {RF_PNG_AS_IS, 0.0, 8, NULL};
     size_t i;
     if (!tmp_open(&t)) {
         RF_CHECK(0);
@@ -588,7 +588,7 @@ static void test_png_codes_16bit(void)
     TmpDir t;
     const double v[] = {0.5, 0.0031308, 1.0, 0.0, 0.75};
     long c[5];
-    RfPngOptions gamma = {RF_PNG_GAMMA, 2.2, 16}, srgb = {RF_PNG_SRGB, 0.0, 16}, asis = {RF_PNG_AS_IS, 0.0, 16};
+    RfPngOptions gamma = {RF_PNG_GAMMA, 2.2, 16, NULL}, srgb = {RF_PNG_SRGB, 0.0, 16, NULL}, asis = {RF_PNG_AS_IS, 0.0, 16, NULL};
     if (!tmp_open(&t)) {
         RF_CHECK(0);
         return;
@@ -664,11 +664,11 @@ static void test_png_roundtrip(void)
     for (e = 0; e < 3; e++)
         for (c = 0; c < 3; c++)
             for (b = 8; b <= 16; b += 8) {
-                RfPngOptions o = {enc[e], 2.2, b};
+                RfPngOptions o = {enc[e], 2.2, b, NULL};
                 png_roundtrip(&t, chans[c], o);
             }
     {
-        RfPngOptions o = {RF_PNG_GAMMA, 1.8, 8};
+        RfPngOptions o = {RF_PNG_GAMMA, 1.8, 8, NULL};
         png_roundtrip(&t, 3, o);
     }
     tmp_close(&t);
@@ -679,7 +679,7 @@ static void test_png_alpha_and_grey(void)
 {
     TmpDir t;
     RfImage img, back = {0, 0, 0, NULL};
-    RfPngOptions gamma = {RF_PNG_GAMMA, 2.2, 8};
+    RfPngOptions gamma = {RF_PNG_GAMMA, 2.2, 8, NULL};
     char err[512], path[512];
     if (!tmp_open(&t)) {
         RF_CHECK(0);
@@ -743,7 +743,7 @@ static void test_png_errors(void)
 {
     TmpDir t;
     RfImage img, back = {0, 0, 0, NULL};
-    RfPngOptions gamma = {RF_PNG_GAMMA, 2.2, 8};
+    RfPngOptions gamma = {RF_PNG_GAMMA, 2.2, 8, NULL};
     unsigned char *good;
     size_t good_n = 0, i;
     char err[512], path[512];
@@ -836,7 +836,7 @@ static void test_png_errors(void)
     RF_CHECK(back.data == NULL);
     /* Bad decode options. */
     {
-        RfPngOptions bad = {RF_PNG_GAMMA, -1.0, 8};
+        RfPngOptions bad = {RF_PNG_GAMMA, -1.0, 8, NULL};
         RF_CHECK_EQ_INT(rf_png_read(path, bad, &back, err, sizeof err), RF_ERR_DOMAIN);
     }
     tmp_close(&t);
@@ -848,7 +848,7 @@ static void test_write_bad_folder(void)
 {
     TmpDir t;
     RfImage img;
-    RfPngOptions gamma = {RF_PNG_GAMMA, 2.2, 8};
+    RfPngOptions gamma = {RF_PNG_GAMMA, 2.2, 8, NULL};
     char err[512], path[512];
     if (!tmp_open(&t)) {
         RF_CHECK(0);
@@ -893,7 +893,7 @@ static void test_write_bad_folder(void)
     {
         size_t n0 = 0, n1 = 0;
         unsigned char *before = read_bytes(path, &n0), *after;
-        RfPngOptions bad = {RF_PNG_GAMMA, 2.2, 7};
+        RfPngOptions bad = {RF_PNG_GAMMA, 2.2, 7, NULL};
         RF_CHECK(rf_png_write(path, &img, bad, err, sizeof err) != RF_OK);
         after = read_bytes(path, &n1);
         RF_CHECK(before && after && n0 == n1 && memcmp(before, after, n0) == 0);

@@ -1042,7 +1042,7 @@ static void t_cli_render_output(void)
         RF_CHECK_EQ_INT(file.width, 64);
         RF_CHECK_EQ_INT(file.height, 48);
         RF_CHECK(file.channels == 3 && memcmp(file.data, lib.data, sizeof(float) * 3 * 64 * 48) == 0);
-        RfPngOptions as_is = {RF_PNG_AS_IS, 1.0, 8};
+        RfPngOptions as_is = {RF_PNG_AS_IS, 1.0, 8, NULL};
         if (rf_png_read(png, as_is, &pimg, err, sizeof err) == RF_OK) {
             RF_CHECK_EQ_INT(pimg.width, 64);
             RF_CHECK_EQ_INT(pimg.height, 48);

@@ -33,10 +33,20 @@ void rf_image_free(RfImage *img); /* safe on an empty or already freed image */
  * clamped to [0,1] after encoding and quantised by round(v * (2^bits - 1)). */
 typedef enum { RF_PNG_AS_IS, RF_PNG_GAMMA, RF_PNG_SRGB } RfPngEncoding;
 
+/* Several output files committed together: each writer given the batch writes its temporary
+ * file and closes it; rf_write_batch_commit renames them all into place, rf_write_batch_abort
+ * (or a failed write, after which the caller aborts) removes them all, so a command never leaves
+ * one output written and another not. */
+typedef struct RfWriteBatch RfWriteBatch;
+RfWriteBatch *rf_write_batch_new(void);
+RfStatus rf_write_batch_commit(RfWriteBatch *batch, char *err, size_t err_size); /* frees the batch */
+void rf_write_batch_abort(RfWriteBatch *batch);                                   /* frees the batch */
+
 typedef struct {
     RfPngEncoding encoding;
     double gamma;  /* for RF_PNG_GAMMA, e.g. 2.2 */
     int bits;      /* 8 or 16 */
+    RfWriteBatch *batch; /* writing: NULL renames the file into place at once */
 } RfPngOptions;
 
 /* A text attribute of an EXR header (name, value). */
@@ -51,13 +61,28 @@ typedef enum { RF_EXR_ZIP, RF_EXR_NONE, RF_EXR_PIZ } RfExrCompression;
 typedef struct {
     RfExrCompression compression;
     int half; /* 0: 32-bit FLOAT channels (the default, exact); 1: 16-bit HALF (rounded) */
+    RfWriteBatch *batch; /* NULL renames the file into place at once */
 } RfExrOptions;
+
+/* Output paths. A writer writes through a symbolic link (to the file it names) and refuses a
+ * target that exists and is not a regular file (a device such as /dev/full, a directory, a
+ * pipe). rf_output_check says so before any work: it also creates and removes a temporary file
+ * next to the target, so an unwritable folder is found before a render, not after it.
+ * rf_output_same: do two paths name the same file (after links; for files that do not exist yet,
+ * the same resolved path)? A command refuses an output that is one of its inputs or another of
+ * its outputs. */
+RfStatus rf_output_check(const char *path, char *err, size_t err_size);
+int rf_output_same(const char *a, const char *b);
+/* A command's outputs before it works: each one checked (rf_output_check; NULL entries are
+ * skipped), none the same as another or as one of the inputs. */
+RfStatus rf_outputs_check(const char *const *outs, int n_out, const char *const *ins, int n_in, char *err,
+                          size_t err_size);
 
 /* err gets one line "path: message" on failure. Status: RF_ERR_DOMAIN for bad arguments,
  * RF_ERR_IO for a file that cannot be opened, read or written, RF_ERR_PARSE for a corrupt or
  * unsupported file, RF_ERR_NOMEM. A writer never leaves a partial file under the target name
- * (it writes "<path>.XXXXXX" in the same folder, then renames); a new file gets mode 0644, a
- * replaced one keeps its mode. */
+ * (it writes "<target>.XXXXXX" in the same folder, then renames, at once or with its batch); a
+ * new file gets mode 0644, a replaced one keeps its mode. */
 /* 1, 3 or 4 channels give grey, RGB or RGBA. Alpha is quantised without the curve (PNG alpha is
  * linear). The file says how it is encoded: gAMA 1/gamma for RF_PNG_GAMMA, sRGB (with gAMA and
  * cHRM) for RF_PNG_SRGB, nothing for RF_PNG_AS_IS. */

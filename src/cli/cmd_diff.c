@@ -92,7 +92,7 @@ static void print_stats(const char *title, const char *key, const RfDiffStats *s
 
 static int write_png(const char *path, const RfImage *img, char *err, size_t errsz)
 {
-    RfPngOptions p = {RF_PNG_AS_IS, 1.0, 8};
+    RfPngOptions p = {RF_PNG_AS_IS, 1.0, 8, NULL};
     return rf_png_write(path, img, p, err, errsz) == RF_OK;
 }
 
@@ -100,7 +100,7 @@ int rf_cmd_diff(int argc, char **argv)
 {
     const char *pa = NULL, *pb = NULL, *heatmap = NULL, *depth_heatmap = NULL, *pda = NULL, *pdb = NULL;
     RfDiffOptions o = rf_diff_options_default();
-    RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8};
+    RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
     int kv = 0, space = -1; /* -1 auto, 0 linear, 1 display */
     int set_warn = 0, set_mean = 0;
     for (int i = 1; i < argc; i++) {

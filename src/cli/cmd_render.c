@@ -125,12 +125,32 @@ static RfStatus primary_depth(const RfScene *scene, int width, int height, RfIma
     return st;
 }
 
+/* What an option takes, for the message on a bad value. */
+static const char *expected_value(const char *opt)
+{
+    static const struct { const char *opt, *what; } table[] = {
+        {"--width", "an integer in [1, 65536]"}, {"--height", "an integer in [1, 65536]"},
+        {"--samples", "an integer in [1, 1048576]"}, {"--depth", "an integer in [1, 1000]"},
+        {"--threads", "an integer in [1, 1024]"}, {"--seed", "an integer in [0, 2147483647]"},
+        {"--sampler", "uniform, random, stratified, sobol or adaptive"},
+        {"--adaptive-threshold", "a number >= 0"}, {"--adaptive-depth", "an integer in [0, 8]"},
+        {"--filter", "box, gaussian or mitchell"}, {"--filter-radius", "a number in (0, 16]"},
+        {"--aperture", "a number >= 0"}, {"--focus", "a number > 0"},
+        {"--light-samples", "an integer in [1, 65536]"}, {"--kernel", "auto, general or a name refray info prints"},
+        {"--gamma", "a number in (0, 10)"}, {"--nff-fov", "centres or edges"},
+    };
+    for (size_t i = 0; i < sizeof table / sizeof table[0]; i++)
+        if (strcmp(opt, table[i].opt) == 0)
+            return table[i].what;
+    return "see refray render --help";
+}
+
 int rf_cmd_render(int argc, char **argv)
 {
     const char *scene_path = NULL, *exr = NULL, *png = NULL, *depth_out = NULL;
     RfRenderOptions opt = rf_render_options_default();
     RfLoadOptions lopt = rf_load_options_default();
-    RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8};
+    RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
     int quiet = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -196,7 +216,7 @@ int rf_cmd_render(int argc, char **argv)
             return 2;
         }
         if (!ok) {
-            fprintf(stderr, "refray render: bad value for %s\n", a);
+            fprintf(stderr, "refray render: bad value '%s' for %s: %s\n", v ? v : "", a, expected_value(a));
             return 2;
         }
     }
@@ -206,6 +226,13 @@ int rf_cmd_render(int argc, char **argv)
     }
     char err[1024];
     RfScene scene;
+    { /* the outputs, before any work: writable, not an input, not one another */
+        const char *outs[3] = {exr, png, depth_out}, *ins[1] = {scene_path};
+        if (rf_outputs_check(outs, 3, ins, 1, err, sizeof err) != RF_OK) {
+            fprintf(stderr, "refray render: %s\n", err);
+            return 2;
+        }
+    }
 
     rf_scene_init(&scene);
     struct timespec load_start;
@@ -269,7 +296,14 @@ int rf_cmd_render(int argc, char **argv)
         return 1;
     }
     int rc = 0;
-    if (exr) {
+    RfWriteBatch *batch = rf_write_batch_new(); /* the outputs are committed together, or none */
+    RfExrOptions eopt = {RF_EXR_ZIP, 0, batch};
+    popt.batch = batch;
+    if (!batch) {
+        fprintf(stderr, "refray render: out of memory\n");
+        rc = 1;
+    }
+    if (exr && !rc) {
         char settings[256], timing[64], threads[32], cpu[256], load_t[32], build_t[32], trace_t[32], kernel[256];
         cpu_model(cpu, sizeof cpu);
         snprintf(settings, sizeof settings, "%dx%d, %d spp %s, filter %s %g, depth %d%s, seed %llu", st.width,
@@ -288,16 +322,24 @@ int rf_cmd_render(int argc, char **argv)
             {"refray:threads", threads}, {"refray:compiler", RF_COMPILER},
             {"refray:flags", RF_BUILD_FLAGS}, {"refray:cpu", cpu},
         };
-        if (rf_exr_write(exr, &img, attrs, (int)(sizeof attrs / sizeof attrs[0]), err, sizeof err) != RF_OK) {
+        if (rf_exr_write_opts(exr, &img, attrs, (int)(sizeof attrs / sizeof attrs[0]), eopt, err, sizeof err) != RF_OK) {
             fprintf(stderr, "refray render: %s\n", err);
             rc = 1;
         }
     }
-    if (png && rf_png_write(png, &img, popt, err, sizeof err) != RF_OK) {
+    if (png && !rc && rf_png_write(png, &img, popt, err, sizeof err) != RF_OK) {
         fprintf(stderr, "refray render: %s\n", err);
         rc = 1;
     }
-    if (depth_out && rf_exr_write(depth_out, &depth, NULL, 0, err, sizeof err) != RF_OK) {
+    if (depth_out && !rc && rf_exr_write_opts(depth_out, &depth, NULL, 0, eopt, err, sizeof err) != RF_OK) {
+        fprintf(stderr, "refray render: %s\n", err);
+        rc = 1;
+    }
+    if (rc) {
+        rf_write_batch_abort(batch);
+        if (exr || png || depth_out)
+            fprintf(stderr, "refray render: nothing written\n");
+    } else if (rf_write_batch_commit(batch, err, sizeof err) != RF_OK) {
         fprintf(stderr, "refray render: %s\n", err);
         rc = 1;
     }

@@ -196,7 +196,7 @@ static exr_result_t write_pixels(exr_context_t ctx, int part, const RfImage *img
 RfStatus rf_exr_write(const char *path, const RfImage *img, const RfImageAttr *attrs, int nattrs, char *err,
                       size_t err_size)
 {
-    RfExrOptions opt = {RF_EXR_ZIP, 0};
+    RfExrOptions opt = {RF_EXR_ZIP, 0, NULL};
     return rf_exr_write_opts(path, img, attrs, nattrs, opt, err, err_size);
 }
 
@@ -277,7 +277,7 @@ RfStatus rf_exr_write_opts(const char *path, const RfImage *img, const RfImageAt
         rf_atomic_abort(&f);
         return rf_io_fail(exr_status(rv), err, err_size, path, "cannot write EXR: %s", exr_msg(&io, rv));
     }
-    return rf_atomic_commit(&f, err, err_size);
+    return rf_atomic_finish(&f, opt.batch, err, err_size);
 }
 
 /* ---- reading ---- */

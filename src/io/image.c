@@ -104,32 +104,76 @@ RfStatus rf_io_check_image(const RfImage *img, const char *path, char *err, size
 
 /* ---- atomic writes ---- */
 
+/* path with its symbolic links followed (at most 40, as the kernel), malloc'd; NULL when the
+ * links loop or memory runs out. A link's relative target is taken from the link's folder. */
+static char *resolve_links(const char *path)
+{
+    char *p = strdup(path);
+    for (int hops = 0; p && hops < 40; hops++) {
+        struct stat ls;
+        if (lstat(p, &ls) != 0 || !S_ISLNK(ls.st_mode))
+            return p;
+        char link[4096];
+        ssize_t n = readlink(p, link, sizeof link - 1);
+        if (n < 0) {
+            free(p);
+            return NULL;
+        }
+        link[n] = 0;
+        const char *slash = strrchr(p, '/');
+        size_t dir = link[0] == '/' || !slash ? 0 : (size_t)(slash - p) + 1;
+        char *q = malloc(dir + (size_t)n + 1);
+        if (q) {
+            memcpy(q, p, dir);
+            memcpy(q + dir, link, (size_t)n + 1);
+        }
+        free(p);
+        p = q;
+    }
+    free(p);
+    return NULL;
+}
+
 RfStatus rf_atomic_open(RfAtomicFile *f, const char *path, char *err, size_t err_size)
 {
     static const char suffix[] = ".XXXXXX";
-    size_t len = strlen(path);
     struct stat st;
     mode_t mode = 0644;
 
     f->path = path;
     f->fd = -1;
     f->fp = NULL;
+    f->tmp = NULL;
+    if (!path || !path[0])
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, "\"\"", "empty output path");
+    f->target = resolve_links(path);
+    if (!f->target)
+        return rf_io_fail(RF_ERR_IO, err, err_size, path, "cannot follow its symbolic links (a loop?)");
+    if (stat(f->target, &st) == 0 && !S_ISREG(st.st_mode)) {
+        rf_atomic_abort(f);
+        return rf_io_fail(RF_ERR_IO, err, err_size, path,
+                          "not a regular file (a device, directory or pipe): it is not replaced");
+    }
+    size_t len = strlen(f->target);
     f->tmp = malloc(len + sizeof suffix);
-    if (!f->tmp)
+    if (!f->tmp) {
+        rf_atomic_abort(f);
         return rf_io_fail(RF_ERR_NOMEM, err, err_size, path, "out of memory");
-    /* "<path>.XXXXXX" lies in the target's folder, so the final rename() stays on one file system. */
-    memcpy(f->tmp, path, len);
+    }
+    /* "<target>.XXXXXX" lies in the target's folder, so the final rename() stays on one file system. */
+    memcpy(f->tmp, f->target, len);
     memcpy(f->tmp + len, suffix, sizeof suffix);
     f->fd = mkstemp(f->tmp);
     if (f->fd < 0) {
         int e = errno;
         free(f->tmp);
         f->tmp = NULL;
+        rf_atomic_abort(f);
         return rf_io_fail_errno(RF_ERR_IO, err, err_size, path, "cannot create a temporary file next to it", e);
     }
     /* mkstemp creates 0600. Keep a replaced file's permissions; a new file gets 0644 (reading
      * the umask would need umask(), which changes process state and is not thread-safe). */
-    if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
+    if (stat(f->target, &st) == 0 && S_ISREG(st.st_mode))
         mode = st.st_mode & 07777;
     if (fchmod(f->fd, mode) != 0) {
         int e = errno;
@@ -160,9 +204,12 @@ void rf_atomic_abort(RfAtomicFile *f)
         free(f->tmp);
         f->tmp = NULL;
     }
+    free(f->target);
+    f->target = NULL;
 }
 
-RfStatus rf_atomic_commit(RfAtomicFile *f, char *err, size_t err_size)
+/* Flushes and closes the temporary file; on failure removes it (f released) and says why. */
+static RfStatus atomic_close(RfAtomicFile *f, char *err, size_t err_size)
 {
     int failed, e = 0;
     if (f->fp) {
@@ -182,12 +229,144 @@ RfStatus rf_atomic_commit(RfAtomicFile *f, char *err, size_t err_size)
         rf_atomic_abort(f);
         return rf_io_fail_errno(RF_ERR_IO, err, err_size, f->path, "cannot write", e ? e : EIO);
     }
-    if (rename(f->tmp, f->path) != 0) {
-        e = errno;
+    return RF_OK;
+}
+
+RfStatus rf_atomic_commit(RfAtomicFile *f, char *err, size_t err_size)
+{
+    RfStatus st = atomic_close(f, err, err_size);
+    if (st != RF_OK)
+        return st;
+    if (rename(f->tmp, f->target) != 0) {
+        int e = errno;
         rf_atomic_abort(f);
         return rf_io_fail_errno(RF_ERR_IO, err, err_size, f->path, "cannot rename the temporary file to it", e);
     }
     free(f->tmp);
     f->tmp = NULL;
+    rf_atomic_abort(f); /* only frees the names now */
+    return RF_OK;
+}
+
+/* ---- several outputs together ---- */
+
+struct RfWriteBatch {
+    int count, cap;
+    char **tmp, **target, **path; /* malloc'd names */
+};
+
+RfWriteBatch *rf_write_batch_new(void) { return calloc(1, sizeof(RfWriteBatch)); }
+
+RfStatus rf_atomic_finish(RfAtomicFile *f, RfWriteBatch *b, char *err, size_t err_size)
+{
+    if (!b)
+        return rf_atomic_commit(f, err, err_size);
+    RfStatus st = atomic_close(f, err, err_size);
+    if (st != RF_OK)
+        return st;
+    if (b->count == b->cap) {
+        int cap = b->cap ? 2 * b->cap : 4;
+        char **t = realloc(b->tmp, sizeof *t * (size_t)cap), **g = t ? realloc(b->target, sizeof *g * (size_t)cap) : NULL,
+             **p = g ? realloc(b->path, sizeof *p * (size_t)cap) : NULL;
+        if (t)
+            b->tmp = t;
+        if (g)
+            b->target = g;
+        if (p)
+            b->path = p;
+        if (!t || !g || !p) {
+            rf_atomic_abort(f);
+            return rf_io_fail(RF_ERR_NOMEM, err, err_size, f->path, "out of memory");
+        }
+        b->cap = cap;
+    }
+    char *path = strdup(f->path);
+    if (!path) {
+        rf_atomic_abort(f);
+        return rf_io_fail(RF_ERR_NOMEM, err, err_size, f->path, "out of memory");
+    }
+    b->tmp[b->count] = f->tmp;
+    b->target[b->count] = f->target;
+    b->path[b->count++] = path;
+    f->tmp = f->target = NULL; /* the batch owns them now */
+    return RF_OK;
+}
+
+static void batch_free(RfWriteBatch *b, int unlink_from)
+{
+    for (int i = 0; i < b->count; i++) {
+        if (i >= unlink_from)
+            unlink(b->tmp[i]);
+        free(b->tmp[i]);
+        free(b->target[i]);
+        free(b->path[i]);
+    }
+    free(b->tmp);
+    free(b->target);
+    free(b->path);
+    free(b);
+}
+
+void rf_write_batch_abort(RfWriteBatch *b)
+{
+    if (b)
+        batch_free(b, 0);
+}
+
+RfStatus rf_write_batch_commit(RfWriteBatch *b, char *err, size_t err_size)
+{
+    if (!b)
+        return RF_OK;
+    for (int i = 0; i < b->count; i++)
+        if (rename(b->tmp[i], b->target[i]) != 0) {
+            RfStatus st = rf_io_fail_errno(RF_ERR_IO, err, err_size, b->path[i],
+                                           "cannot rename the temporary file to it", errno);
+            batch_free(b, i); /* the ones not yet renamed are removed */
+            return st;
+        }
+    batch_free(b, b->count);
+    return RF_OK;
+}
+
+/* ---- output paths ---- */
+
+RfStatus rf_output_check(const char *path, char *err, size_t err_size)
+{
+    RfAtomicFile f;
+    RfStatus st = rf_atomic_open(&f, path, err, err_size);
+    if (st == RF_OK)
+        rf_atomic_abort(&f); /* it could be created: removed again */
+    return st;
+}
+
+int rf_output_same(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
+        return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    char *ra = resolve_links(a), *rb = resolve_links(b);
+    int same = ra && rb && strcmp(ra, rb) == 0;
+    free(ra);
+    free(rb);
+    return same;
+}
+
+RfStatus rf_outputs_check(const char *const *outs, int n_out, const char *const *ins, int n_in, char *err,
+                          size_t err_size)
+{
+    for (int i = 0; i < n_out; i++) {
+        if (!outs[i])
+            continue;
+        for (int j = 0; j < n_in; j++)
+            if (ins[j] && rf_output_same(outs[i], ins[j]))
+                return rf_io_fail(RF_ERR_DOMAIN, err, err_size, outs[i], "is an input (%s): it is not overwritten",
+                                  ins[j]);
+        for (int j = 0; j < i; j++)
+            if (outs[j] && rf_output_same(outs[i], outs[j]))
+                return rf_io_fail(RF_ERR_DOMAIN, err, err_size, outs[i], "is given as two outputs (also %s)", outs[j]);
+        RfStatus st = rf_output_check(outs[i], err, err_size);
+        if (st != RF_OK)
+            return st;
+    }
     return RF_OK;
 }

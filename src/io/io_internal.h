@@ -26,7 +26,8 @@ RfStatus rf_io_check_image(const RfImage *img, const char *path, char *err, size
 /* A file being written under a temporary name in the target's folder. Either fd is written
  * directly, or the caller wraps it in fp (rf_atomic_stdio) and writes through stdio. */
 typedef struct {
-    const char *path; /* the target */
+    const char *path; /* the target as given (for messages) */
+    char *target;     /* the file written: path with symbolic links followed (malloc'd) */
     char *tmp;        /* the temporary file's name (malloc'd) */
     int fd;
     FILE *fp;
@@ -41,5 +42,8 @@ RfStatus rf_atomic_stdio(RfAtomicFile *f, char *err, size_t err_size);
 RfStatus rf_atomic_commit(RfAtomicFile *f, char *err, size_t err_size);
 /* Closes and removes the temporary file; the target is untouched. Safe to call twice. */
 void rf_atomic_abort(RfAtomicFile *f);
+/* rf_atomic_commit, or with a batch: closes the temporary file and hands it to the batch,
+ * which renames it at rf_write_batch_commit. Always releases f. */
+RfStatus rf_atomic_finish(RfAtomicFile *f, RfWriteBatch *batch, char *err, size_t err_size);
 
 #endif

@@ -141,7 +141,7 @@ static RfStatus png_write_impl(const char *path, const RfImage *img, RfPngOption
     png_write_end(png, info);
     free(row);
     png_destroy_write_struct(&png, &info);
-    return rf_atomic_commit(&f, err, err_size);
+    return rf_atomic_finish(&f, opt.batch, err, err_size);
 }
 
 RfStatus rf_png_write(const char *path, const RfImage *img, RfPngOptions opt, char *err, size_t err_size)
