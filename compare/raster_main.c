@@ -78,6 +78,11 @@ int main(int argc, char **argv)
     }
     char err[1024];
     RfScene scene;
+    const char *outs[3] = {exr, png, depth_out}, *ins[1] = {scene_path};
+    if (rf_outputs_check(outs, 3, ins, 1, err, sizeof err) != RF_OK) { /* before any work */
+        fprintf(stderr, "refray-raster: %s\n", err);
+        return 2;
+    }
     rf_scene_init(&scene);
     if (rf_scene_load(scene_path, &lopt, &scene, err, sizeof err) != RF_OK) {
         fprintf(stderr, "%s\n", err);
@@ -105,11 +110,22 @@ int main(int argc, char **argv)
     RfImageAttr attrs[] = {{"refray:version", RF_VERSION}, {"refray:scene", scene_path},
                            {"refray:renderer", "refray-raster"}, {"refray:settings", settings}};
     int rc = 0;
-    if (exr && rf_exr_write(exr, &img, attrs, 4, err, sizeof err) != RF_OK)
+    RfWriteBatch *batch = rf_write_batch_new(); /* the outputs together, or none */
+    RfExrOptions eopt = {RF_EXR_ZIP, 0, batch};
+    popt.batch = batch;
+    if (!batch) {
+        snprintf(err, sizeof err, "out of memory");
+        rc = 1;
+    }
+    if (!rc && exr && rf_exr_write_opts(exr, &img, attrs, 4, eopt, err, sizeof err) != RF_OK)
         rc = 1;
     if (!rc && png && rf_png_write(png, &img, popt, err, sizeof err) != RF_OK)
         rc = 1;
-    if (!rc && depth_out && rf_exr_write(depth_out, &depth, attrs, 4, err, sizeof err) != RF_OK)
+    if (!rc && depth_out && rf_exr_write_opts(depth_out, &depth, attrs, 4, eopt, err, sizeof err) != RF_OK)
+        rc = 1;
+    if (rc)
+        rf_write_batch_abort(batch);
+    else if (rf_write_batch_commit(batch, err, sizeof err) != RF_OK)
         rc = 1;
     if (rc)
         fprintf(stderr, "refray-raster: %s\n", err);

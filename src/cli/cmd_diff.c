@@ -161,6 +161,14 @@ int rf_cmd_diff(int argc, char **argv)
             usage(stderr);
         return EXIT_USAGE;
     }
+    { /* heatmaps: writable, and never one of the images compared */
+        char err[1024];
+        const char *outs[2] = {heatmap, depth_heatmap}, *ins[4] = {pa, pb, pda, pdb};
+        if (rf_outputs_check(outs, 2, ins, 4, err, sizeof err) != RF_OK) {
+            fprintf(stderr, "refray diff: %s\n", err);
+            return EXIT_USAGE;
+        }
+    }
     if (space < 0)
         space = is_png(pa) || is_png(pb);
     if (space == 1) {

@@ -285,7 +285,7 @@ static cJSON *value_to_json(const char *s)
     if (strcmp(s, "null") == 0)
         return cJSON_CreateNull();
     if (*s == '[' || *s == '{')
-        return cJSON_Parse(s);
+        return cJSON_ParseWithOpts(s, NULL, 1); /* 1: nothing may follow the value */
     cJSON *num = numbers_to_json(s);
     if (num)
         return num;
@@ -785,7 +785,7 @@ int rf_formula_batch(FILE *in, FILE *out)
             continue;
         }
         cJSON *reply = cJSON_CreateObject();
-        cJSON *c = cJSON_Parse(p);
+        cJSON *c = cJSON_ParseWithOpts(p, NULL, 1); /* trailing text makes the line invalid */
         const cJSON *id = c ? cJSON_GetObjectItemCaseSensitive(c, "id") : NULL;
         const cJSON *inputs = c ? cJSON_GetObjectItemCaseSensitive(c, "in") : NULL;
         const RfFormula *f = NULL;

@@ -485,7 +485,13 @@ RfStatus rf_exr_read(const char *path, RfImage *img, char *err, size_t err_size)
     }
     y_only = !(idx_r >= 0 && idx_g >= 0 && idx_b >= 0);
     if (y_only && idx_y < 0) {
-        st = rf_io_fail(RF_ERR_PARSE, err, err_size, path, "EXR has neither R, G, B nor Y channels");
+        char names[128] = "";
+        size_t len = 0;
+        for (i = 0; i < chl->num_channels && len < sizeof names; i++)
+            len += (size_t)snprintf(names + len, sizeof names - len, "%s%s", i ? ", " : "",
+                                    chl->entries[i].name.str ? chl->entries[i].name.str : "?");
+        st = rf_io_fail(RF_ERR_PARSE, err, err_size, path,
+                        "EXR channels %s: refray reads R, G and B (all three, A optional) or Y", names);
         goto done;
     }
     nc = y_only ? (idx_a >= 0 ? 4 : 1) : (idx_a >= 0 ? 4 : 3);

@@ -76,6 +76,9 @@ void rf_lex_init_at(RfLexer *lx, const char *name, const char *text, size_t len,
     lx->errsz = errsz;
     if (err && errsz)
         err[0] = 0;
+    /* a UTF-8 byte order mark at the start of a file is not text (editors write it) */
+    if (line == 1 && len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0)
+        lx->p += 3;
     scan(lx);
 }
 

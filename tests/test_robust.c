@@ -1,0 +1,189 @@
+/* Bad input as a hostile user gives it (issue 13): every case gets one clear message, a non-zero
+ * exit code and no damaged or half-written file, and nothing crashes or hangs. One table, run
+ * through the commands as a user runs them, in a scratch folder; every command is bounded by
+ * `timeout`, so a hang fails the test instead of stopping the suite. */
+#define _XOPEN_SOURCE 700
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "rf_test.h"
+
+#define CAM "camera eye 0 0 5 target 0 0 0 up 0 1 0 fov 40\nresolution 16 16\n"
+
+static char dir[] = "/tmp/refray-robust-XXXXXX";
+static char bin[PATH_MAX], raster[PATH_MAX], data[PATH_MAX];
+
+static void put(const char *name, const char *text)
+{
+    char path[PATH_MAX + 64];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "wb");
+    if (f) {
+        fputs(text, f);
+        fclose(f);
+    }
+}
+
+/* A chain of `levels` groups, each placing the one below (twice with `dag`: 2^levels paths). */
+static void put_graph(const char *name, int levels, int dag)
+{
+    size_t cap = (size_t)levels * 80 + 256, n = 0;
+    char *t = malloc(cap);
+    n += (size_t)snprintf(t + n, cap - n, CAM "object o0\nsphere 0 0 0 1\nend\n");
+    for (int i = 1; i <= levels; i++) {
+        n += (size_t)snprintf(t + n, cap - n, "group o%d\ninstance o%d translate 0.1 0 0\n", i, i - 1);
+        if (dag)
+            n += (size_t)snprintf(t + n, cap - n, "instance o%d translate -0.1 0 0\n", i - 1);
+        n += (size_t)snprintf(t + n, cap - n, "end\n");
+    }
+    snprintf(t + n, cap - n, "instance o%d scale 0.3\n", levels);
+    put(name, t);
+    free(t);
+}
+
+static int exists(const char *name)
+{
+    char path[PATH_MAX + 64];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    return access(path, F_OK) == 0;
+}
+
+typedef struct {
+    const char *what, *cmd; /* $R: refray, $X: refray-raster, $D: tests/data/robust */
+    int exit_code;          /* expected; -1: any non-zero */
+    const char *message;    /* in the output (stdout and stderr) */
+} Case;
+
+static void run_case(const Case *c)
+{
+    static char cmd[4 * PATH_MAX + 8192], expanded[3 * PATH_MAX + 4096];
+    size_t n = 0;
+    for (const char *p = c->cmd; *p && n + PATH_MAX + 1 < sizeof expanded; p++) {
+        if (p[0] == '$' && (p[1] == 'R' || p[1] == 'X' || p[1] == 'D')) {
+            const char *r = p[1] == 'R' ? bin : p[1] == 'X' ? raster : data;
+            n += (size_t)snprintf(expanded + n, sizeof expanded - n, "%s", r);
+            p++;
+        } else {
+            expanded[n++] = *p;
+        }
+    }
+    expanded[n] = 0;
+    snprintf(cmd, sizeof cmd, "cd '%s' && timeout 60 sh -c '%s' 2>&1", dir, expanded);
+    int rc;
+    const char *out = rf_test_run(cmd, &rc);
+    rf_test_checks++;
+    int code_ok = c->exit_code < 0 ? rc != 0 && rc != 124 : rc == c->exit_code;
+    if (!code_ok || (c->message && !strstr(out, c->message)))
+        rf_test_fail(__FILE__, __LINE__, "%s: exit %d (expected %d), output:\n%s\n  expected to contain: %s", c->what,
+                     rc, c->exit_code, out, c->message ? c->message : "(anything)");
+}
+
+static void t_bad_input_table(void)
+{
+    if (!realpath(rf_test_bin(), bin) || !realpath(rf_test_data("robust"), data) || !mkdtemp(dir)) {
+        rf_test_fail(__FILE__, __LINE__, "cannot set up the scratch folder");
+        return;
+    }
+    snprintf(raster, sizeof raster, "%.*s/refray-raster", (int)(strrchr(bin, '/') - bin), bin);
+    put("ok.rf", CAM "light point 0 0 5 intensity 1\nsphere 0 0 0 1\n");
+    put_graph("chain.rf", 3000, 0);
+    put_graph("dag.rf", 30, 1);
+    put("inf.rf", CAM "light point 0 0 5 intensity 1\nmaterial m kd 0x1p1023\nsphere 0 0 0 1\n");
+    put("zero.rf", CAM "mesh /dev/zero\n");
+    put("zero.obj", "mtllib /dev/zero\nv 0 0 0\n");
+    put("bom.rf", "\xEF\xBB\xBF" CAM "sphere 0 0 0 1\n");
+    put("crlf.rf", "camera eye 0 0 5 target 0 0 0 up 0 1 0 fov 40\r\nsphere 0 0 0 1\r\nsphere 0 0 0 2 bogus\r\n");
+    put("garbage.jsonl", "{\"id\":\"dot\",\"in\":{\"a\":[1,2,3],\"b\":[4,5,6]}} garbage\n");
+    put("nul.jsonl", "{\"id\":\"dot\",\"in\":{\"a\":[1,2,3],\0\"b\":[4,5,6]}}\n");
+    {
+        char path[PATH_MAX + 64];
+        snprintf(path, sizeof path, "%s/nul.jsonl", dir); /* the NUL above ended the string: write it raw */
+        FILE *f = fopen(path, "wb");
+        static const char line[] = "{\"id\":\"dot\",\"in\":{\"a\":[1,2,3],\0\"b\":[4,5,6]}}\n";
+        if (f) {
+            fwrite(line, 1, sizeof line - 1, f);
+            fclose(f);
+        }
+    }
+    static const Case cases[] = {
+        /* crashes and hangs */
+        {"3000 nested instances (render)", "$R render chain.rf -o a.exr", 1, "nested deeper than 64 levels"},
+        {"3000 nested instances (info)", "$R info chain.rf", 1, "chain.rf:196:1: instances nested deeper"},
+        {"3000 nested instances (raster)", "$X chain.rf -o a.exr", 1, "nested deeper than 64 levels"},
+        {"a DAG of 30 doubling levels (info: once per object)", "$R info dag.rf", 0, "objects   31"},
+        {"a DAG of 30 doubling levels (raster refuses to expand it)", "$X dag.rf -o a.exr", 1,
+         "expands to 0 triangles in 2147483647 placements"},
+        {"a 4-vector for a 3-vector", "$R formula srgb-encode rgb=1,2,3,4", 1, "must be a vector of 3 finite numbers"},
+        {"mesh /dev/zero", "$R info zero.rf", 1, "zero.rf:3:6: mesh '/dev/zero': not a regular file"},
+        {"mtllib /dev/zero", "$R info zero.obj", 1, "material library '/dev/zero': not a regular file"},
+        {"a FIFO as the scene", "rm -f fifo.rf; mkfifo fifo.rf; $R info fifo.rf", 1, "fifo.rf:1:1: not a regular file"},
+        {"a device as an image", "$R diff /dev/zero /dev/zero", 4, "not a regular file"},
+        {"the EXR write fails (file size limit)", "ulimit -f 0; $R render ok.rf -o big.exr --quiet", 1,
+         "cannot write EXR: write failed: File too large"},
+        {"an infinite radiance fails a reference render", "$R render inf.rf -o inf.exr", 1,
+         "float-overflowing radiance"},
+        {"... and is black and counted in a preview", "$R render inf.rf -o inf.exr --preview", 0, "invalid samples"},
+        {"a diff of images with Inf never passes", "$R diff $D/inf.exr $D/inf.exr", 2, "verdict: FAIL"},
+        /* files */
+        {"-o the scene itself", "$R render ok.rf -o ok.rf", 2, "ok.rf: is an input (ok.rf): it is not overwritten"},
+        {"-o X --png X", "$R render ok.rf -o x.out --png x.out", 2, "is given as two outputs"},
+        {"-o /dev/full", "$R render ok.rf -o /dev/full", 2, "not a regular file (a device, directory or pipe)"},
+        {"an output folder that does not exist", "$R render ok.rf -o a.exr --png nodir/a.png", 2,
+         "nodir/a.png: cannot create a temporary file next to it"},
+        {"-o \"\"", "$R render ok.rf -o \"\"", 2, "empty output path"},
+        {"--width 0", "$R render ok.rf -o a.exr --width 0", 2, "bad value '0' for --width: an integer in [1, 65536]"},
+        {"an EXR with R only", "$R diff $D/only_r.exr $D/only_r.exr", 4, "EXR channels R: refray reads R, G and B"},
+        {"an EXR with G and B only", "$R diff $D/only_gb.exr $D/only_gb.exr", 4, "EXR channels B, G"},
+        {"a heatmap over one of the images", "$R diff $D/only_r.exr $D/only_gb.exr --heatmap $D/only_r.exr", 5,
+         "is an input"},
+        /* bad text */
+        {"a UTF-8 byte order mark", "$R info bom.rf", 0, "primitives 1"},
+        {"CRLF line ends keep their positions", "$R info crlf.rf", 1, "crlf.rf:3:16: unknown attribute 'bogus'"},
+        {"trailing garbage after a JSON line", "$R formula --batch < garbage.jsonl", 1, "not valid JSON"},
+        {"a NUL byte in a batch line", "$R formula --batch < nul.jsonl", 1, "not valid JSON"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
+        run_case(&cases[i]);
+    /* nothing half-written or damaged */
+    RF_CHECK(!exists("a.exr") && !exists("inf.exr.tmp") && !exists("big.exr") && !exists("x.out"));
+    struct stat sb;
+    RF_CHECK(stat("/dev/full", &sb) == 0 && S_ISCHR(sb.st_mode));
+    char cmd[PATH_MAX * 2];
+    int rc;
+    snprintf(cmd, sizeof cmd, "ls -A '%s' | grep -c 'XXXXXX\\|\\.exr\\.\\|\\.png\\.' ", dir);
+    RF_CHECK(strcmp(rf_test_run(cmd, &rc), "0\n") == 0); /* no temporary file left */
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    rf_test_run(cmd, &rc);
+}
+
+/* Writing through a symbolic link writes the file it names; the link stays. A failed second
+ * output leaves no first one. */
+static void t_outputs_links_and_batches(void)
+{
+    char d[] = "/tmp/refray-out-XXXXXX", cmd[PATH_MAX * 3], b[PATH_MAX];
+    int rc;
+    if (!mkdtemp(d) || !realpath(rf_test_bin(), b))
+        return;
+    snprintf(cmd, sizeof cmd,
+             "cd '%s' && printf '" CAM "sphere 0 0 0 1\\n' > s.rf && touch real.exr && ln -s real.exr link.exr && "
+             "'%s' render s.rf -o link.exr --quiet && test -L link.exr && test -s real.exr && echo through",
+             d, b);
+    RF_CHECK(strstr(rf_test_run(cmd, &rc), "through") != NULL);
+    snprintf(cmd, sizeof cmd,
+             "cd '%s' && (ulimit -f 2; '%s' render s.rf -o first.exr --png second.png --width 200 --height 200 "
+             "--quiet); ls", d, b);
+    const char *out = rf_test_run(cmd, &rc);
+    RF_CHECK(!strstr(out, "first.exr") && !strstr(out, "second.png"));
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", d);
+    rf_test_run(cmd, &rc);
+}
+
+const RfTest rf_tests_robust[] = {
+    {"robust_bad_input_table", t_bad_input_table},
+    {"robust_outputs_links_and_batches", t_outputs_links_and_batches},
+    RF_TEST_END,
+};
