@@ -305,7 +305,7 @@ int main(int argc, char **argv)
                 if (rf_vec3_dot(hits[i].normal, l) <= 0.0)
                     continue;
                 for (int k2 = 0; k2 < 2; k2++) {
-                    RfRay sr = rf_ray(rf_ray_offset_origin(hits[i].point, hits[i].normal, l, k2 ? 1e-4 : 0.0), l);
+                    RfRay sr = rf_ray(rf_hit_offset_origin(&hits[i], l, k2 ? 1e-4 : 0.0), l);
                     set[k2]->rays[set[k2]->count] = sr;
                     set[k2]->t_max[set[k2]->count++] = rf_vec3_length(rf_vec3_sub(lp, sr.origin));
                 }

@@ -3,7 +3,8 @@
 // miss, nearest primitive, t) against the exact one (verify_oracle.cpp, CGAL Epeck); every
 // disagreement is ambiguous (within kDelta * S of a boundary) or real. Also measured: shadow
 // acne and light leaks over scene scales 1e-4 .. 1e6, the optics edge cases, and the
-// invalid-sample count of stress renders. Exit status 1 on any real disagreement.
+// invalid-sample count of stress renders. Exit status 1 on any real disagreement, 2 when a
+// scene cannot be loaded or is outside the verifier's range (or on bad usage).
 #include "verify.hpp"
 
 #include <sys/wait.h>
@@ -18,7 +19,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
+#include <exception>
 #include <map>
+#include <new>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,6 +30,7 @@
 #include "refray/numeric.h"
 #include "refray/optics.h"
 #include "refray/scene_io.h"
+#include "refray/transform.h"
 
 namespace rv {
 namespace {
@@ -46,11 +51,14 @@ struct Opts {
 // Plain data: children of --jobs send it back through a pipe.
 struct Stats {
     char name[16];
-    long rays, agree, amb, real, edge_miss, skipped;
+    long rays, agree, amb, real, edge_miss, skipped; // skipped: rays not representable
     long acne_n, acne_d; // falsely occluded (or leaking) samples / samples
     double secs;
     int n_examples;
     char examples[3][480];
+    char skip_note[480]; // the first ray skipped as not representable, and why
+    int error;           // the row could not run (a scene not loaded or refused): error_msg
+    char error_msg[480];
 };
 
 void example(Stats &st, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
@@ -62,6 +70,33 @@ void example(Stats &st, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(st.examples[st.n_examples++], sizeof st.examples[0], fmt, ap);
     va_end(ap);
+}
+
+// A ray whose exact evaluation is impossible (an exception from CGAL or the allocator, a
+// non-finite ray): counted as skipped, the first one kept for the report.
+void not_representable(Stats &st, RfRay r, const char *why)
+{
+    st.rays++;
+    st.skipped++;
+    if (!st.skip_note[0])
+        snprintf(st.skip_note, sizeof st.skip_note, "o=(%a,%a,%a) d=(%a,%a,%a): %s", r.origin.x, r.origin.y,
+                 r.origin.z, r.dir.x, r.dir.y, r.dir.z, why);
+}
+
+void row_error(Stats &st, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void row_error(Stats &st, const char *fmt, ...)
+{
+    st.error = 1;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(st.error_msg, sizeof st.error_msg, fmt, ap);
+    va_end(ap);
+}
+
+bool finite_ray(RfRay r)
+{
+    return std::isfinite(r.origin.x) && std::isfinite(r.origin.y) && std::isfinite(r.origin.z) &&
+           std::isfinite(r.dir.x) && std::isfinite(r.dir.y) && std::isfinite(r.dir.z);
 }
 
 // ---- random numbers (splitmix64: reproducible per seed and class) ------------------------
@@ -99,24 +134,40 @@ struct Rng {
     }
 };
 
+// Two unit vectors perpendicular to the unit vector k and to each other.
+void frame(RfVec3 k, RfVec3 *u, RfVec3 *v)
+{
+    RfVec3 h = std::fabs(k.x) < 0.6 ? rf_vec3(1, 0, 0) : rf_vec3(0, 1, 0);
+    *u = rf_vec3_normalize(rf_vec3_cross(k, h));
+    *v = rf_vec3_cross(k, *u);
+}
+
 // ---- scenes built in code -------------------------------------------------------------------
 
-// A closed mesh and a region certainly inside it: a ray from there must hit the mesh.
+// A closed mesh and a region certainly inside it: a ray from there must hit the mesh. A mesh
+// of an object (object >= 0) is closed in each of the object's placements: the region is the
+// ball (c, r_in) in object space.
 struct Mesh {
     bool is_box;
     RfVec3 c;
     double r_in;
     RfVec3 lo, hi;
+    int object;
 };
 
 struct World {
     RfScene sc;
     int mat = 0;
+    unsigned in_obj = 0; // RF_PRIM_IN_OBJECT while an object is being built
+    int cur_object = -1;
     std::vector<int> prim_mesh; // per primitive: closed mesh index or -1
     std::vector<Mesh> meshes;
     std::unique_ptr<Oracle> orc;
     RfTracer *tr = nullptr;
     RfAabb bounds;
+    std::vector<int> mesh_paths; // paths placing an object that holds a closed mesh
+    // the generators' pick lists, per kind mask and level (made on first use)
+    mutable std::map<unsigned, std::vector<std::vector<int>>> picks;
 
     World()
     {
@@ -134,10 +185,16 @@ struct World {
     World(const World &) = delete;
     World &operator=(const World &) = delete;
 
+    void grow(RfVec3 p)
+    {
+        if (!in_obj)
+            bounds = rf_aabb_add_point(bounds, p);
+    }
     void add(RfPrimitive p, int mesh)
     {
         char msg[256];
         p.material = mat;
+        p.flags |= in_obj;
         if (rf_scene_add_primitive(&sc, &p, msg, sizeof msg) == RF_OK)
             prim_mesh.push_back(mesh);
     }
@@ -150,7 +207,8 @@ struct World {
         p.u.sphere.radius = r;
         add(p, -1);
         RfVec3 rr = rf_vec3(r, r, r);
-        bounds = rf_aabb_add_point(rf_aabb_add_point(bounds, rf_vec3_sub(c, rr)), rf_vec3_add(c, rr));
+        grow(rf_vec3_sub(c, rr));
+        grow(rf_vec3_add(c, rr));
     }
     void poly(const RfVec3 *v, int n, unsigned flags, int mesh)
     {
@@ -165,7 +223,7 @@ struct World {
         p.u.poly.count = n;
         add(p, mesh);
         for (int i = 0; i < n; i++)
-            bounds = rf_aabb_add_point(bounds, v[i]);
+            grow(v[i]);
     }
     void plane(RfVec3 n, double offset)
     {
@@ -174,6 +232,48 @@ struct World {
         p.flags = RF_PRIM_TWO_SIDED;
         p.u.plane.normal = n;
         p.u.plane.offset = offset;
+        add(p, -1);
+    }
+    void cone(RfVec3 base, double rb, RfVec3 apex, double ra, unsigned flags)
+    {
+        RfPrimitive p{};
+        p.type = RF_PRIM_CONE;
+        p.flags = flags;
+        p.u.cone.base = base;
+        p.u.cone.base_radius = rb;
+        p.u.cone.apex = apex;
+        p.u.cone.apex_radius = ra;
+        add(p, -1);
+        double m = std::max(rb, ra);
+        for (RfVec3 c : {base, apex}) {
+            grow(rf_vec3_sub(c, rf_vec3(m, m, m)));
+            grow(rf_vec3_add(c, rf_vec3(m, m, m)));
+        }
+    }
+    // object NAME ... end (§4.8): the primitives added in between belong to the object
+    int begin_object(const char *name)
+    {
+        int o = -1;
+        rf_scene_add_object(&sc, name, RfSrcLoc{0, 0}, &o);
+        in_obj = RF_PRIM_IN_OBJECT;
+        cur_object = o;
+        return o;
+    }
+    void end_object(int o)
+    {
+        sc.objects[o].count = sc.prim_count - sc.objects[o].first;
+        in_obj = 0;
+        cur_object = -1;
+    }
+    void instance(int object, RfMat4 m)
+    {
+        size_t idx;
+        if (rf_scene_add_instance(&sc, object, m, &idx) != RF_OK)
+            return;
+        RfPrimitive p{};
+        p.type = RF_PRIM_INSTANCE;
+        p.flags = RF_PRIM_TWO_SIDED;
+        p.u.instance = idx;
         add(p, -1);
     }
     // The icosahedron subdivided `level` times, vertices on radius r (times 1 + jitter*U(-1,1)):
@@ -210,7 +310,7 @@ struct World {
         for (auto &p : v)
             p = rf_vec3_add(c, rf_vec3_scale(rf_vec3_normalize(p), r * (1 + jitter * rng.range(-1, 1))));
         int id = (int)meshes.size();
-        meshes.push_back(Mesh{false, c, 0.3 * r, {}, {}});
+        meshes.push_back(Mesh{false, c, 0.3 * r, {}, {}, cur_object});
         for (auto &t : f) {
             RfVec3 tri[3] = {v[(size_t)t[0]], v[(size_t)t[1]], v[(size_t)t[2]]};
             poly(tri, 3, RF_PRIM_TWO_SIDED, id);
@@ -224,7 +324,7 @@ struct World {
         int id = (int)meshes.size();
         RfVec3 hi = rf_vec3_add(corner, rf_vec3(n * h, n * h, n * h));
         RfVec3 m = rf_vec3(n * h * 0.2, n * h * 0.2, n * h * 0.2);
-        meshes.push_back(Mesh{true, {}, 0, rf_vec3_add(corner, m), rf_vec3_sub(hi, m)});
+        meshes.push_back(Mesh{true, {}, 0, rf_vec3_add(corner, m), rf_vec3_sub(hi, m), -1});
         for (int a = 0; a < 3; a++)
             for (int side = 0; side < 2; side++)
                 for (int i = 0; i < n; i++)
@@ -265,6 +365,45 @@ struct World {
         RfVec3 pts[4] = {p0, rf_vec3_add(p0, u), rf_vec3_add(rf_vec3_add(p0, u), v), rf_vec3_add(p0, v)};
         poly(pts, 4, flags, -1);
     }
+    // A star or gear outline of 2 k vertices (k = 4 .. 20, radii alternating between s and
+    // s * U(0.2, 0.7), gear teeth or spikes): non-convex. exact: in the plane p0 + i u + j v
+    // with small integer vectors u, v times a power of two and integer (i, j), so the vertices
+    // are exactly coplanar and every edge point k/2^10 of the way is exact; otherwise in a
+    // random plane with coordinates rounded to 7 significant digits (as in the SPD's gears).
+    void star(RfVec3 c, double s, bool exact, unsigned flags, Rng &rng)
+    {
+        int k = 4 + rng.below(17);
+        double rin = rng.range(0.2, 0.7), tw = rng.range(0, 1);
+        std::vector<RfVec3> pts;
+        if (exact) {
+            double q = std::ldexp(1.0, (int)std::floor(std::log2(s)) - 26);
+            RfVec3 p0 = rf_vec3(std::round(c.x / q) * q, std::round(c.y / q) * q, std::round(c.z / q) * q);
+            double e = std::ldexp(1.0, (int)std::floor(std::log2(s)) - 8);
+            RfVec3 u, v;
+            do {
+                u = rf_vec3(rng.below(5) - 2, rng.below(5) - 2, rng.below(5) - 2);
+                v = rf_vec3(rng.below(5) - 2, rng.below(5) - 2, rng.below(5) - 2);
+            } while (rf_vec3_length(rf_vec3_cross(u, v)) < 2);
+            for (int i = 0; i < 2 * k; i++) {
+                double a = RF_PI * (i + (i % 2 ? tw : 0)) / k, r = (i % 2 ? rin : 1.0) * 64;
+                double ii = std::round(r * std::cos(a)), jj = std::round(r * std::sin(a));
+                pts.push_back(rf_vec3_add(p0, rf_vec3_add(rf_vec3_scale(u, ii * e), rf_vec3_scale(v, jj * e))));
+            }
+        } else {
+            RfVec3 n = rng.unit(), u, v;
+            frame(n, &u, &v);
+            for (int i = 0; i < 2 * k; i++) {
+                double a = RF_PI * (i + (i % 2 ? tw : 0)) / k, r = (i % 2 ? rin : 1.0) * s;
+                RfVec3 p = rf_vec3_add(c, rf_vec3_add(rf_vec3_scale(u, r * std::cos(a)), rf_vec3_scale(v, r * std::sin(a))));
+                char b[3][40];
+                snprintf(b[0], sizeof b[0], "%.7g", p.x);
+                snprintf(b[1], sizeof b[1], "%.7g", p.y);
+                snprintf(b[2], sizeof b[2], "%.7g", p.z);
+                pts.push_back(rf_vec3(std::atof(b[0]), std::atof(b[1]), std::atof(b[2])));
+            }
+        }
+        poly(pts.data(), (int)pts.size(), flags, -1);
+    }
     // Spheres, a closed jittered icosphere, quads, loose triangles and a plane, all scaled by s
     // around `at` (the uniform, far and surface classes).
     void mixed(RfVec3 at, double s, Rng &rng)
@@ -285,18 +424,58 @@ struct World {
         RfVec3 n = rng.unit();
         plane(n, rf_vec3_dot(n, at) - 1.8 * s);
     }
+    // Throws SceneError (the oracle's range and model checks).
     void finish()
     {
+        if (sc.instance_count > 0) { // objects placed by instances: the scene's own bounds
+            RfVec3 lo, hi;
+            if (rf_scene_bounds(&sc, &lo, &hi)) {
+                bounds.lo = lo;
+                bounds.hi = hi;
+            }
+        }
         orc.reset(new Oracle(&sc));
+        if (!(bounds.lo.x <= bounds.hi.x)) {
+            // every placement reaches a plane (rf_scene_bounds skips those): the bounded items
+            // of every path, placed
+            for (int p = 0; p < orc->path_count(); p++)
+                for (int i : orc->level_items(orc->path(p).level)) {
+                    const Item &it = orc->items()[(size_t)i];
+                    if (it.kind == ITEM_INSTANCE || !(it.box.lo.x <= it.box.hi.x))
+                        continue;
+                    for (int k = 0; k < 8; k++) {
+                        RfVec3 c = rf_vec3(k & 1 ? it.box.hi.x : it.box.lo.x, k & 2 ? it.box.hi.y : it.box.lo.y,
+                                           k & 4 ? it.box.hi.z : it.box.lo.z);
+                        LV q = orc->path(p).to_world.point(lv(c));
+                        bounds = rf_aabb_add_point(bounds, rf_vec3((double)q.x, (double)q.y, (double)q.z));
+                    }
+                }
+            if (!(bounds.lo.x <= bounds.hi.x)) // planes only
+                bounds = RfAabb{rf_vec3(-1, -1, -1), rf_vec3(1, 1, 1)};
+        }
         if (rf_tracer_create(&sc, &tr) != RF_OK) {
             fprintf(stderr, "refray-verify: rf_tracer_create failed\n");
             exit(2);
         }
+        for (int p = 1; p < orc->path_count(); p++)
+            for (const Mesh &m : meshes)
+                if (m.object >= 0 && orc->path(p).level == m.object + 1) {
+                    mesh_paths.push_back(p);
+                    break;
+                }
     }
     int interior_mesh(RfVec3 o) const
     {
         for (size_t i = 0; i < meshes.size(); i++) {
             const Mesh &m = meshes[i];
+            if (m.object >= 0) {
+                for (int p : mesh_paths) {
+                    const Path &P = orc->path(p);
+                    if (P.level == m.object + 1 && len(sub(P.to_obj.point(lv(o)), lv(m.c))) < (L)m.r_in)
+                        return (int)i;
+                }
+                continue;
+            }
             if (m.is_box ? (o.x > m.lo.x && o.y > m.lo.y && o.z > m.lo.z && o.x < m.hi.x && o.y < m.hi.y && o.z < m.hi.z)
                          : rf_vec3_length(rf_vec3_sub(o, m.c)) < m.r_in)
                 return (int)i;
@@ -313,7 +492,8 @@ struct TraceAns {
 };
 
 // The library's tracer (rf_tracer_intersect), or with --triangle/--sphere the same nearest-hit
-// loop over the §3.5 kernels with the chosen methods (the planted-bug mode).
+// loop over the §3.5 kernels with the chosen methods (the planted-bug mode: the world's
+// triangles, spheres, planes and cones; polygons and instances are not in this loop).
 TraceAns tracer_query(const World &w, const Opts &o, RfRay r, double t_max)
 {
     if (!o.kernel) {
@@ -321,11 +501,13 @@ TraceAns tracer_query(const World &w, const Opts &o, RfRay r, double t_max)
         int p = rf_tracer_intersect(w.tr, r, 0.0, t_max, &h);
         return {p, p >= 0 ? h.t : NAN};
     }
-    std::vector<int> cand;
+    std::vector<Cand> cand;
     w.orc->candidates(r, cand);
     TraceAns best{-1, NAN};
-    for (int i : cand) {
-        const Item &it = w.orc->items()[(size_t)i];
+    for (const Cand &cd : cand) {
+        if (cd.path != 0)
+            continue;
+        const Item &it = w.orc->items()[(size_t)cd.item];
         RfHit h;
         int ok = 0;
         double t_min = 0.0;
@@ -336,13 +518,17 @@ TraceAns tracer_query(const World &w, const Opts &o, RfRay r, double t_max)
             ok = rf_intersect_sphere(r, it.s, o.sph, t_min, t_max, &h);
         else if (it.kind == ITEM_PLANE)
             ok = rf_intersect_plane(r, it.pl, t_min, t_max, &h);
+        else if (it.kind == ITEM_CONE)
+            ok = rf_intersect_cone(r, it.cone, t_min, t_max, &h);
+        else
+            ok = 0;
         if (!ok)
             continue;
         if (!(it.flags & RF_PRIM_TWO_SIDED)) {
             int front = rf_vec3_dot(r.dir, h.normal) < 0.0;
             if (front == !!(it.flags & RF_PRIM_INSIDE)) {
-                // the hidden side of a sphere: its far root may face the ray (tracer.c hit_item)
-                if (it.kind == ITEM_SPHERE) {
+                // the hidden side of a sphere or cone: its far root may face the ray (tracer.c)
+                if (it.kind == ITEM_SPHERE || it.kind == ITEM_CONE) {
                     t_min = std::nextafter(h.t, HUGE_VAL);
                     goto again;
                 }
@@ -357,28 +543,217 @@ TraceAns tracer_query(const World &w, const Opts &o, RfRay r, double t_max)
 
 // ---- margins to the boundaries (long double, for the classification only) -----------------
 
-typedef long double L;
-struct LV {
-    L x, y, z;
+// The local rays of one world ray, per path (made once per check).
+struct LocalRays {
+    const Oracle &orc;
+    RfRay ray;
+    std::deque<std::pair<int, LocalRay>> v;
+    LocalRays(const Oracle &o, RfRay r) : orc(o), ray(r) {}
+    const LocalRay &get(int path)
+    {
+        for (const auto &x : v)
+            if (x.first == path)
+                return x.second;
+        v.emplace_back(path, orc.local_ray(path, ray));
+        return v.back().second;
+    }
 };
-LV lv(RfVec3 v) { return {v.x, v.y, v.z}; }
-LV sub(LV a, LV b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-L dot(LV a, LV b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-LV cross(LV a, LV b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-L len(LV a) { return std::sqrt(dot(a, a)); }
 
 struct Margin {
     L m, S; // the configuration is ambiguous when m <= kDelta * S
     bool near() const { return !(m > (L)kDelta * S); }
 };
+// A margin given as the smallest ratio distance / bound over several boundaries.
+Margin ratio_margin(L r) { return {r, (L)(1 / kDelta)}; }
+
+// The ray's deviation in an object's space (the tracer's rounded object-space ray against the
+// exact one), as a distance near parameter t: dev_o + dev_d t.
+L dev_at(const LocalRay &lr, L t) { return lr.dev_o + (lr.dev_d > 0 ? lr.dev_d * std::fabs(t) : 0); }
+
+// A non-convex polygon as the tracer sees it: Newell's normal through v0, the point test in
+// the projection that drops the normal's largest coordinate.
+struct PolyGeom {
+    std::vector<LV> v;
+    LV N;
+    L nl, vmax, diam, newell_rel, nonplanar;
+    int drop;
+    bool tie; // the two largest normal coordinates nearly equal: the tracer's projection may differ
+};
+
+PolyGeom poly_geom(const Oracle &orc, const Item &it)
+{
+    PolyGeom g;
+    int n = it.poly_count;
+    LV lo{HUGE_VALL, HUGE_VALL, HUGE_VALL}, hi{-HUGE_VALL, -HUGE_VALL, -HUGE_VALL};
+    g.N = {0, 0, 0};
+    g.vmax = 0;
+    L sum = 0;
+    for (int k = 0; k < n; k++)
+        g.v.push_back(lv(orc.vertex(it, k)));
+    for (int k = 0; k < n; k++) {
+        const LV &a = g.v[(size_t)k], &b = g.v[(size_t)((k + 1) % n)];
+        g.N = add(g.N, cross(a, b));
+        sum += len(a) * len(b);
+        g.vmax = std::max(g.vmax, len(a));
+        lo = {std::min(lo.x, a.x), std::min(lo.y, a.y), std::min(lo.z, a.z)};
+        hi = {std::max(hi.x, a.x), std::max(hi.y, a.y), std::max(hi.z, a.z)};
+    }
+    g.nl = len(g.N);
+    g.diam = len(sub(hi, lo));
+    // Newell's sum in double: n cross products and n additions of terms <= |v_k| |v_k+1|, so
+    // the normal's direction is within (n + 2) eps sum / |N|; in units of 16 eps
+    g.newell_rel = (L)(n + 2) / 16 * sum / g.nl;
+    g.nonplanar = 0;
+    for (const LV &a : g.v)
+        g.nonplanar = std::max(g.nonplanar, std::fabs(dot(g.N, sub(a, g.v[0]))) / g.nl);
+    L ax = std::fabs(g.N.x), ay = std::fabs(g.N.y), az = std::fabs(g.N.z);
+    g.drop = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+    L m1 = std::max({ax, ay, az}), m2 = ax + ay + az - m1 - std::min({ax, ay, az});
+    g.tie = m1 - m2 <= 1e-12L * m1;
+    return g;
+}
+
+// Distance from (pu, pv) to the segment (au, av) - (bu, bv).
+L seg_dist(L pu, L pv, L au, L av, L bu, L bv)
+{
+    L eu = bu - au, ev = bv - av, wu = pu - au, wv = pv - av, ee = eu * eu + ev * ev;
+    L s = ee > 0 ? std::min((L)1, std::max((L)0, (wu * eu + wv * ev) / ee)) : 0;
+    L du = wu - s * eu, dv = wv - s * ev;
+    return std::sqrt(du * du + dv * dv);
+}
+
+// The polygon's boundaries: the origin on its plane (t = 0), the ray parallel to it, and the
+// hit point on an edge (in the projection the tracer's crossing test uses). The hit point of
+// the tracer moves along the ray by its plane's error over cos: ~7 eps (S + t |d|) / cos, plus
+// Newell's tilt times the distance from v0; the crossing test adds a few eps of the
+// coordinates. Returned as a ratio (ambiguous when <= 1).
+Margin poly_margin(const PolyGeom &g, const LocalRay &lr)
+{
+    LV o = lr.o, d = lr.d;
+    L dl = len(d), den = dot(g.N, d), cosv = std::fabs(den) / (g.nl * dl);
+    L h0 = std::fabs(dot(g.N, sub(o, g.v[0]))) / g.nl;
+    L S0 = std::max(len(o), len(g.v[0])) + g.newell_rel * len(sub(o, g.v[0]));
+    L r = h0 / ((L)kDelta * S0 + 4 * lr.dev_o);
+    r = std::min(r, cosv / ((L)kDelta * (1 + g.newell_rel) + 4 * lr.dev_d / dl));
+    if (den != 0) {
+        L t = dot(g.N, sub(g.v[0], o)) / den;
+        if (t >= 0) {
+            LV q = add(o, scale(d, t));
+            int iu = g.drop == 0 ? 1 : 0, iv = g.drop == 2 ? 1 : 2;
+            L qu = comp(q, iu), qv = comp(q, iv), me = HUGE_VALL;
+            size_t n = g.v.size();
+            for (size_t k = 0; k < n; k++) {
+                const LV &a = g.v[k], &b = g.v[(k + 1) % n];
+                me = std::min(me, seg_dist(qu, qv, comp(a, iu), comp(a, iv), comp(b, iu), comp(b, iv)));
+            }
+            L Sp = std::max({len(o), g.vmax, t * dl}) + g.newell_rel * g.diam;
+            r = std::min(r, me * cosv / ((L)kDelta * Sp + 4 * dev_at(lr, t)));
+        }
+    }
+    if (g.tie && g.nonplanar > 0)
+        r = 0;
+    return ratio_margin(r);
+}
+
+// The tolerance on the tracer's t for a polygon hit near t (as for planes, with Newell's tilt).
+L poly_band(const PolyGeom &g, const LocalRay &lr, L t)
+{
+    L dl = len(lr.d), cosv = std::max(std::fabs(dot(g.N, lr.d)) / (g.nl * dl), (L)1e-300);
+    L Sp = std::max(len(lr.o), g.vmax) + g.newell_rel * g.diam + 4 * dev_at(lr, t) / (L)kDelta;
+    return (L)kDelta * std::max(Sp, std::fabs(t) * dl) / (cosv * dl);
+}
+
+// A cone in the tracer's own terms (rf_intersect_cone): unit axis k, slope m, the quadratic
+// a t^2 + 2 bh t + c of the ray with coefficients computed as the tracer does (here in long
+// double), and the sizes of the terms each coefficient subtracts (Am, Bm, Cm): the tracer
+// evaluates them, and the discriminant bh^2 - a c, without any stabilisation, so its
+// decisions are exact only for coefficients perturbed by ~eps times those sizes.
+struct ConeGeom {
+    L H, m, oz, dz, a, bh, c, disc, dl, ol, Am, Bm, Cm, Sabs;
+    L da, dbh, dc; // the coefficients' change under the object-space ray's deviation (instances)
+};
+
+ConeGeom cone_geom(const Item &it, const LocalRay &lr)
+{
+    ConeGeom g;
+    const RfCone &cn = it.cone;
+    LV B = lv(cn.base), A = sub(lv(cn.apex), B);
+    g.H = len(A);
+    LV k = scale(A, 1 / g.H);
+    L rb = cn.base_radius;
+    g.m = ((L)cn.apex_radius - rb) / g.H;
+    LV orel = sub(lr.o, B), d = lr.d;
+    g.dz = dot(d, k);
+    g.oz = dot(orel, k);
+    LV dp = sub(d, scale(k, g.dz)), op = sub(orel, scale(k, g.oz));
+    L r0 = rb + g.m * g.oz;
+    g.a = dot(dp, dp) - g.m * g.m * g.dz * g.dz;
+    g.bh = dot(op, dp) - g.m * g.dz * r0;
+    g.c = dot(op, op) - r0 * r0;
+    g.disc = g.bh * g.bh - g.a * g.c;
+    g.dl = len(d);
+    g.ol = len(orel);
+    L am = std::fabs(g.m), R0m = rb + am * g.ol, m2 = 1 + g.m * g.m;
+    g.Am = g.dl * g.dl * m2;
+    g.Bm = g.dl * (g.ol + am * R0m);
+    g.Cm = g.ol * g.ol + R0m * R0m;
+    g.Sabs = len(lr.o) + len(B) + g.H;
+    g.da = 2 * m2 * g.dl * lr.dev_d;
+    g.dbh = m2 * (g.ol * lr.dev_d + g.dl * lr.dev_o) + am * R0m * lr.dev_d + am * am * g.dl * lr.dev_o;
+    g.dc = 2 * (g.ol + am * R0m) * lr.dev_o;
+    return g;
+}
+
+// The tolerance on a cone root t: the root's change under coefficient errors of kDelta times
+// their sizes (implicit differentiation: |da t^2 + 2 dbh t + dc| / |2 sqrt(disc)|) and under
+// the discriminant's own rounding (|t| eps_D / (2 disc)), plus the instance deviation.
+L cone_band(const ConeGeom &g, L t)
+{
+    L sd = std::sqrt(std::fabs(g.disc)), at = std::fabs(t);
+    if (!(sd > 0))
+        return HUGE_VALL;
+    return (L)kDelta * ((g.Am * t * t + 2 * g.Bm * at + g.Cm) / (2 * sd) + at * (g.Bm * g.Bm + g.Am * g.Cm) / (sd * sd)) +
+           4 * (g.da * t * t + 2 * g.dbh * at + g.dc) / (2 * sd);
+}
+
+// The cone's boundaries: tangency (disc = 0), the origin on the surface (c = 0), and each root
+// at a rim (axial position 0 or H, with the root's tolerance). Returned as a ratio.
+Margin cone_margin(const ConeGeom &g, const LocalRay &lr)
+{
+    L r = std::fabs(g.disc) / ((L)kDelta * 2 * (g.Bm * g.Bm + g.Am * g.Cm) + 4 * (2 * g.Bm * g.dbh + g.Am * g.dc + g.Cm * g.da));
+    r = std::min(r, std::fabs(g.c) / ((L)kDelta * 2 * g.Cm + 4 * g.dc));
+    if (g.disc >= 0) {
+        L ts[2];
+        int n = 0;
+        L sq = std::sqrt(g.disc), q = -(g.bh + (g.bh < 0 ? -sq : sq));
+        if (g.a != 0 && q != 0) {
+            ts[n++] = q / g.a;
+            ts[n++] = g.c / q;
+        } else if (q != 0) {
+            ts[n++] = g.c / q;
+        }
+        for (int i = 0; i < n; i++) {
+            L t = ts[i];
+            if (!std::isfinite(t))
+                continue;
+            L z = g.oz + t * g.dz, mr = std::min(std::fabs(z), std::fabs(z - g.H));
+            L bound = (L)kDelta * (g.Sabs + std::fabs(t) * g.dl) + std::fabs(g.dz) * cone_band(g, t) + 4 * dev_at(lr, t);
+            r = std::min(r, mr / bound);
+        }
+    }
+    return ratio_margin(r);
+}
 
 // How far the ray is from changing its answer for this item: triangles: the distance from the
 // ray's line to each edge line (the perpendicular shift that puts the ray on the edge) and from
 // the origin to the plane (t = 0); spheres: | |v| - r | (tangency) and | |f| - r | (origin on
-// the sphere); planes: the origin's distance and the ray's tilt out of the plane.
-Margin margin(const Item &it, RfRay r)
+// the sphere); planes: the origin's distance and the ray's tilt out of the plane; polygons and
+// cones: see poly_margin, cone_margin. In an object's space the object-space ray's deviation
+// (the tracer's rounded inverse and transform) is added: 4 (dev_o + dev_d R / |d|) at the
+// item's distance R.
+Margin margin(const Oracle &orc, const Item &it, const LocalRay &lr)
 {
-    LV o = lv(r.origin), d = lv(r.dir);
+    LV o = lr.o, d = lr.d;
     L dl = len(d);
     switch (it.kind) {
     case ITEM_TRI: {
@@ -394,35 +769,49 @@ Margin margin(const Item &it, RfRay r)
         L nl = len(n);
         if (nl > 0)
             m = std::min(m, std::fabs(dot(n, sub(p[0], o))) / nl);
+        if (lr.dev_o > 0 || lr.dev_d > 0)
+            S += 4 * dev_at(lr, S / dl) / (L)kDelta;
         return {m, S};
     }
     case ITEM_SPHERE: {
         LV f = sub(o, lv(it.s.center));
         L r = it.s.radius, fl = len(f), vl = len(cross(f, d)) / dl;
-        return {std::min(std::fabs(vl - r), std::fabs(fl - r)), fl + r};
+        L S = fl + r;
+        if (lr.dev_o > 0 || lr.dev_d > 0)
+            S += 4 * dev_at(lr, S / dl) / (L)kDelta;
+        return {std::min(std::fabs(vl - r), std::fabs(fl - r)), S};
     }
     case ITEM_PLANE: {
         LV n = lv(it.pl.normal);
         L nl = len(n), S = std::max(len(o), std::fabs((L)it.pl.offset)) + 1e-300L;
         L m = std::fabs(dot(n, o) - it.pl.offset) / nl, cosv = std::fabs(dot(n, d)) / (nl * dl);
+        if (lr.dev_o > 0 || lr.dev_d > 0) {
+            L den = dot(n, d), tp = den != 0 ? ((L)it.pl.offset - dot(n, o)) / den : HUGE_VALL;
+            S += 4 * dev_at(lr, tp) / (L)kDelta;
+            cosv = std::max((L)0, cosv - 4 * lr.dev_d / dl);
+        }
         return {std::min(m, cosv * S), S};
     }
+    case ITEM_POLY:
+        return poly_margin(poly_geom(orc, it), lr);
+    case ITEM_CONE:
+        return cone_margin(cone_geom(it, lr), lr);
     default:
         return {0, 1};
     }
 }
 
 // |cos| of the angle between the ray and the surface normal at parameter t.
-L cos_at(const Item &it, RfRay r, L t)
+L cos_at(const Item &it, const LocalRay &lr, L t)
 {
-    LV d = lv(r.dir);
+    LV d = lr.d;
     L dl = len(d);
     if (it.kind == ITEM_TRI) {
         LV n = cross(sub(lv(it.p[1]), lv(it.p[0])), sub(lv(it.p[2]), lv(it.p[0])));
         return std::fabs(dot(n, d)) / (len(n) * dl);
     }
     if (it.kind == ITEM_SPHERE) {
-        LV q = sub(lv(r.origin), lv(it.s.center));
+        LV q = sub(lr.o, lv(it.s.center));
         q = {q.x + t * d.x, q.y + t * d.y, q.z + t * d.z};
         return std::fabs(dot(q, d)) / (it.s.radius * dl);
     }
@@ -435,17 +824,22 @@ L cos_at(const Item &it, RfRay r, L t)
 
 // The tolerance on t (units of |dir|) for an item hit near t: kDelta S / cos, with S grown to
 // the hit's distance t |dir| (a plane's t = num / <d,n> has the relative error eps / cos of
-// its denominator, i.e. an error in position of eps t |d| / cos).
-L t_band(const Item &it, RfRay r, L t)
+// its denominator, i.e. an error in position of eps t |d| / cos). Polygons and cones: their
+// own bands (poly_band, cone_band).
+L t_band(const Oracle &orc, const Item &it, const LocalRay &lr, L t)
 {
-    Margin m = margin(it, r);
-    L dl = len(lv(r.dir)), c = std::max(cos_at(it, r, t), (L)1e-300);
+    if (it.kind == ITEM_POLY)
+        return poly_band(poly_geom(orc, it), lr, t);
+    if (it.kind == ITEM_CONE)
+        return cone_band(cone_geom(it, lr), t);
+    Margin m = margin(orc, it, lr);
+    L dl = len(lr.d), c = std::max(cos_at(it, lr, t), (L)1e-300);
     return (L)kDelta * std::max(m.S, std::fabs(t) * dl) / (c * dl);
 }
 
 // ---- one ray: tracer against the exact answer ----------------------------------------------
 
-enum Verdict { AGREE, AMBIG, REAL, SKIP };
+enum Verdict { AGREE, AMBIG, REAL };
 
 struct Check {
     Verdict v;
@@ -454,37 +848,49 @@ struct Check {
     ExactHit e;
 };
 
+// May throw (the oracle's exact arithmetic): check_and_tally counts such rays as skipped.
 Check check_ray(const World &w, const Opts &o, RfRay r, int interior)
 {
     Check c{AGREE, false, tracer_query(w, o, r, HUGE_VAL), {}};
     const Oracle &orc = *w.orc;
+    const auto &items = orc.items();
+    std::vector<Cand> cands;
+    orc.candidates(r, cands);
+    LocalRays lrs(orc, r);
+    // the tracer's primitive: its items in the world, or (an object's primitive: the tracer
+    // does not say through which instance) every placement of it among the candidates
+    std::vector<Cand> tc;
+    if (c.t.prim >= 0) {
+        for (int i : orc.items_of(c.t.prim))
+            if (items[(size_t)i].level == 0)
+                tc.push_back(Cand{i, 0});
+        for (const Cand &cd : cands)
+            if (cd.path != 0 && items[(size_t)cd.item].prim == c.t.prim)
+                tc.push_back(cd);
+    }
     // the tolerance for the tracer's t on its own primitive
     L tol = -1;
-    if (c.t.prim >= 0)
-        for (int i : orc.items_of(c.t.prim))
-            tol = std::max(tol, t_band(orc.items()[(size_t)i], r, c.t.t));
-    c.e = orc.nearest(r, c.t.t, (double)tol);
+    for (const Cand &cd : tc)
+        tol = std::max(tol, t_band(orc, items[(size_t)cd.item], lrs.get(cd.path), c.t.t));
+    if (std::isnan(tol))
+        tol = HUGE_VALL;
+    c.e = orc.nearest(r, cands, c.t.t, (double)tol);
     const ExactHit &e = c.e;
     if (e.inconsistent) {
         c.v = REAL;
-        return c;
-    }
-    if (e.skipped) {
-        c.v = SKIP;
         return c;
     }
     bool t_hit = c.t.prim >= 0;
     if (!t_hit && !e.hit)
         return c;
     bool same = false;
-    for (int i : e.items)
-        same |= t_hit && orc.items()[(size_t)i].prim == c.t.prim;
+    for (const Cand &cd : e.items)
+        same |= t_hit && items[(size_t)cd.item].prim == c.t.prim;
     bool amb = e.coplanar;
-    for (int i : e.items)
-        amb |= margin(orc.items()[(size_t)i], r).near();
-    if (t_hit)
-        for (int i : orc.items_of(c.t.prim))
-            amb |= margin(orc.items()[(size_t)i], r).near();
+    for (const Cand &cd : e.items)
+        amb |= margin(orc, items[(size_t)cd.item], lrs.get(cd.path)).near();
+    for (const Cand &cd : tc)
+        amb |= margin(orc, items[(size_t)cd.item], lrs.get(cd.path)).near();
     if (same) {
         if (e.t_ok)
             return c;
@@ -494,15 +900,15 @@ Check check_ray(const World &w, const Opts &o, RfRay r, int interior)
     bool tie = false;
     if (t_hit && e.hit) {
         L band = 0;
-        for (int i : e.items)
-            band = std::max(band, t_band(orc.items()[(size_t)i], r, e.t));
+        for (const Cand &cd : e.items)
+            band = std::max(band, t_band(orc, items[(size_t)cd.item], lrs.get(cd.path), e.t));
         band = std::max(band, tol);
-        tie = std::fabs((L)c.t.t - e.t) <= band;
+        tie = !(std::fabs((L)c.t.t - e.t) > band);
         amb |= tie;
     }
     // A ray from inside a closed mesh whose exact first hit is on the mesh must not get out:
     // a tracer miss, or a hit beyond the mesh, is real whatever the margins (watertightness).
-    int em = e.hit ? w.prim_mesh[(size_t)orc.items()[(size_t)e.items[0]].prim] : -1;
+    int em = e.hit ? w.prim_mesh[(size_t)items[(size_t)e.items[0].item].prim] : -1;
     if (interior >= 0 && em == interior && (!t_hit || (!tie && c.t.t > e.t))) {
         c.v = REAL;
         c.edge_miss = amb;
@@ -518,17 +924,34 @@ void tally(Stats &st, const World &w, RfRay r, const Check &c)
     switch (c.v) {
     case AGREE: st.agree++; break;
     case AMBIG: st.amb++; break;
-    case SKIP: st.skipped++; break;
     case REAL:
         st.real++;
         if (c.edge_miss)
             st.edge_miss++;
         example(st, "o=(%a,%a,%a) d=(%a,%a,%a): tracer prim %d t=%.17g, exact prim %d t=%.17Lg%s%s",
                 r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z, c.t.prim, c.t.t,
-                c.e.hit ? w.orc->items()[(size_t)c.e.items[0]].prim : -1, c.e.t,
+                c.e.hit ? w.orc->items()[(size_t)c.e.items[0].item].prim : -1, c.e.t,
                 c.edge_miss ? " (through an edge of a closed mesh)" : "",
                 c.e.inconsistent ? " (CGAL sphere test disagrees with the exact roots)" : "");
         break;
+    }
+}
+
+// One ray checked and counted; a ray the oracle cannot evaluate exactly (an exception: CGAL's
+// conversions, the allocator) or that is not finite is counted as skipped (not representable).
+void check_and_tally(Stats &st, const World &w, const Opts &o, RfRay r, int interior)
+{
+    if (!finite_ray(r)) {
+        not_representable(st, r, "the ray is not finite");
+        return;
+    }
+    try {
+        Check c = check_ray(w, o, r, interior);
+        tally(st, w, r, c);
+    } catch (const std::bad_alloc &) {
+        not_representable(st, r, "out of memory in the exact evaluation");
+    } catch (const std::exception &ex) {
+        not_representable(st, r, ex.what());
     }
 }
 
@@ -542,22 +965,129 @@ RfVec3 box_point(const RfAabb &b, double grow, Rng &rng)
 
 RfRay gen_uniform(const World &w, Rng &rng) { return rf_ray(box_point(w.bounds, 1.4, rng), rng.unit()); }
 
-// Aimed at a vertex (exactly) or an edge point of a random triangle, from inside a closed mesh
-// when there is one (a dyadic origin in a grid cube: the direction is then exact and the ray
-// passes exactly through the edge or vertex), else from anywhere around.
+// A primitive placed in the world: an item and the composed to_world of its path (none in the
+// world itself: its doubles are used as they are).
+struct Placed {
+    int item = -1, path = 0;
+    const Affine *M = nullptr;
+    RfVec3 map(RfVec3 p) const
+    {
+        if (!M)
+            return p;
+        LV q = M->point(lv(p));
+        return rf_vec3((double)q.x, (double)q.y, (double)q.z);
+    }
+};
+
+// A random item of the kinds in `mask` (bits 1 << ItemKind) reachable from the world: uniform
+// among the level's eligible items (instances whose object holds such items count as one
+// entry), descending into instances. The lists are those of the old generators when the world
+// holds no instance.
+bool pick(const World &w, Rng &rng, unsigned mask, Placed &out)
+{
+    const Oracle &orc = *w.orc;
+    const auto &items = orc.items();
+    auto f = w.picks.find(mask);
+    if (f == w.picks.end()) {
+        size_t nl = w.sc.object_count + 1;
+        std::vector<std::vector<int>> lists(nl);
+        std::vector<int> state(nl, 0); // 0 unknown, 1 visiting, 2 done
+        std::function<bool(int)> fill = [&](int level) -> bool {
+            if (state[(size_t)level] == 2)
+                return !lists[(size_t)level].empty();
+            if (state[(size_t)level] == 1)
+                return false;
+            state[(size_t)level] = 1;
+            for (int i : orc.level_items(level)) {
+                const Item &it = items[(size_t)i];
+                if (it.kind == ITEM_INSTANCE) {
+                    if (fill(w.sc.instances[it.inst].object + 1))
+                        lists[(size_t)level].push_back(i);
+                } else if (mask & (1u << it.kind)) {
+                    lists[(size_t)level].push_back(i);
+                }
+            }
+            state[(size_t)level] = 2;
+            return !lists[(size_t)level].empty();
+        };
+        for (size_t l = 0; l < nl; l++)
+            fill((int)l);
+        f = w.picks.emplace(mask, std::move(lists)).first;
+    }
+    int level = 0, path = 0;
+    for (int depth = 0; depth < 64; depth++) {
+        const std::vector<int> &l = f->second[(size_t)level];
+        if (l.empty())
+            return false;
+        int i = l[(size_t)rng.below((int)l.size())];
+        const Item &it = items[(size_t)i];
+        if (it.kind != ITEM_INSTANCE) {
+            out.item = i;
+            out.path = path;
+            out.M = path ? &orc.path(path).to_world : nullptr;
+            return true;
+        }
+        path = orc.child_path(path, it.inst);
+        level = orc.path(path).level;
+    }
+    return false;
+}
+
+// A point on a cone's rim (base: end 0, apex: end 1) at angle phi, and its frame.
+struct ConeFrame {
+    RfVec3 k, u, v;
+    double H;
+};
+ConeFrame cone_frame(const RfCone &c)
+{
+    ConeFrame f;
+    RfVec3 a = rf_vec3_sub(c.apex, c.base);
+    f.H = rf_vec3_length(a);
+    f.k = rf_vec3_scale(a, 1 / f.H);
+    frame(f.k, &f.u, &f.v);
+    return f;
+}
+RfVec3 cone_point(const RfCone &c, const ConeFrame &f, double w, double phi, double *rho, RfVec3 *radial)
+{
+    *rho = c.base_radius + (c.apex_radius - c.base_radius) * w;
+    *radial = rf_vec3_add(rf_vec3_scale(f.u, std::cos(phi)), rf_vec3_scale(f.v, std::sin(phi)));
+    return rf_vec3_add(rf_vec3_add(c.base, rf_vec3_scale(f.k, w * f.H)), rf_vec3_scale(*radial, *rho));
+}
+
+const unsigned kEdgeKinds = 1u << ITEM_TRI | 1u << ITEM_POLY | 1u << ITEM_CONE;
+
+// Aimed at a vertex (exactly) or an edge point of a random triangle or polygon, or at a point
+// of a cone's rim; from inside a closed mesh when there is one (a dyadic origin in a grid
+// cube: the direction is then exact and the ray passes exactly through the edge or vertex),
+// else from anywhere around. Items of objects: the target (and an origin inside the object's
+// mesh) in object space, then placed by the composed to_world.
 RfRay gen_edges(const World &w, Rng &rng, int *interior)
 {
     const auto &items = w.orc->items();
-    std::vector<int> tris;
-    for (size_t i = 0; i < items.size(); i++)
-        if (items[i].kind == ITEM_TRI)
-            tris.push_back((int)i);
+    Placed pl;
     *interior = -1;
-    if (tris.empty())
+    if (!pick(w, rng, kEdgeKinds, pl))
         return gen_uniform(w, rng);
-    const Item &t = items[(size_t)tris[(size_t)rng.below((int)tris.size())]];
-    int k = rng.below(3);
-    RfVec3 a = t.p[k], b = t.p[(k + 1) % 3], target = a;
+    const Item &t = items[(size_t)pl.item];
+    RfVec3 a, b;
+    if (t.kind == ITEM_CONE) {
+        ConeFrame f = cone_frame(t.cone);
+        double rho;
+        RfVec3 radial;
+        RfVec3 p = cone_point(t.cone, f, rng.below(2), rng.range(0, 2 * RF_PI), &rho, &radial);
+        RfVec3 o = box_point(w.bounds, 1.4, rng);
+        return rf_ray(o, rf_vec3_sub(pl.map(p), o));
+    }
+    if (t.kind == ITEM_POLY) {
+        int k = rng.below(t.poly_count);
+        a = w.orc->vertex(t, k);
+        b = w.orc->vertex(t, (k + 1) % t.poly_count);
+    } else {
+        int k = rng.below(3);
+        a = t.p[k];
+        b = t.p[(k + 1) % 3];
+    }
+    RfVec3 target = a;
     int kind = rng.below(3);
     RfVec3 o;
     int mi = w.prim_mesh[(size_t)t.prim];
@@ -570,7 +1100,7 @@ RfRay gen_edges(const World &w, Rng &rng, int *interior)
             target = rf_vec3_add(a, rf_vec3_scale(rf_vec3_sub(b, a), (double)rng.below(1024) / 1024));
     } else {
         if (mi >= 0)
-            o = rf_vec3_add(w.meshes[(size_t)mi].c, rf_vec3_scale(rng.ball(), 0.99 * w.meshes[(size_t)mi].r_in));
+            o = pl.map(rf_vec3_add(w.meshes[(size_t)mi].c, rf_vec3_scale(rng.ball(), 0.99 * w.meshes[(size_t)mi].r_in)));
         else
             o = box_point(w.bounds, 1.4, rng);
         if (kind == 1)
@@ -579,57 +1109,113 @@ RfRay gen_edges(const World &w, Rng &rng, int *interior)
             target = rf_vec3_lerp(a, b, rng.u());
     }
     *interior = w.interior_mesh(o);
-    return rf_ray(o, rf_vec3_sub(target, o));
+    return rf_ray(o, rf_vec3_sub(pl.map(target), o));
 }
 
-// Tangent to a random sphere, the line's distance from the centre r (1 + eps) with eps 0 or
-// +-10^U(-16, -2).
+// Tangent to a random sphere or cone, the line's distance from the surface r e with eps 0 or
+// +-10^U(-16, -2) (r the radius there), from 1.1 .. 1000 r away. A cone's tangent line lies in
+// the tangent plane at a random surface point, in a random direction of that plane. Items of
+// objects: made in object space, then placed (an affine map keeps tangency).
 bool gen_grazing(const World &w, Rng &rng, RfRay *out)
 {
     const auto &items = w.orc->items();
-    std::vector<int> sp;
-    for (size_t i = 0; i < items.size(); i++)
-        if (items[i].kind == ITEM_SPHERE)
-            sp.push_back((int)i);
-    if (sp.empty())
+    Placed pl;
+    if (!pick(w, rng, 1u << ITEM_SPHERE | 1u << ITEM_CONE, pl))
         return false;
-    const RfSphere &s = items[(size_t)sp[(size_t)rng.below((int)sp.size())]].s;
+    const Item &it = items[(size_t)pl.item];
     double eps = rng.below(4) == 0 ? 0 : (rng.below(2) ? 1 : -1) * rng.pow10(-16, -2);
-    double rho = s.radius * (1 + eps), L0 = s.radius * rng.pow10(0.05, 3);
-    RfVec3 wdir = rng.unit(), o = rf_vec3_sub(s.center, rf_vec3_scale(wdir, L0));
-    RfVec3 u = rf_vec3_normalize(rf_vec3_cross(wdir, rng.unit()));
-    // the line from o through c + u q has distance rho from c when q = rho L0 / sqrt(L0^2 - rho^2)
-    double q = rho * L0 / std::sqrt(std::max(L0 * L0 - rho * rho, 1e-300));
-    *out = rf_ray(o, rf_vec3_sub(rf_vec3_add(s.center, rf_vec3_scale(u, q)), o));
+    RfVec3 o, target;
+    if (it.kind == ITEM_SPHERE) {
+        const RfSphere &s = it.s;
+        double rho = s.radius * (1 + eps), L0 = s.radius * rng.pow10(0.05, 3);
+        RfVec3 wdir = rng.unit();
+        o = rf_vec3_sub(s.center, rf_vec3_scale(wdir, L0));
+        RfVec3 u = rf_vec3_normalize(rf_vec3_cross(wdir, rng.unit()));
+        // the line from o through c + u q has distance rho from c when q = rho L0 / sqrt(L0^2 - rho^2)
+        double q = rho * L0 / std::sqrt(std::max(L0 * L0 - rho * rho, 1e-300));
+        target = rf_vec3_add(s.center, rf_vec3_scale(u, q));
+    } else {
+        const RfCone &c = it.cone;
+        ConeFrame f = cone_frame(c);
+        double rho, w01 = rng.u();
+        RfVec3 radial;
+        RfVec3 p = cone_point(c, f, w01, rng.range(0, 2 * RF_PI), &rho, &radial);
+        double dr = c.apex_radius - c.base_radius;
+        RfVec3 g = rf_vec3_normalize(rf_vec3_add(rf_vec3_scale(f.k, f.H), rf_vec3_scale(radial, dr)));
+        RfVec3 tau = rf_vec3_cross(f.k, radial);
+        RfVec3 n = rf_vec3_normalize(rf_vec3_sub(radial, rf_vec3_scale(f.k, dr / f.H)));
+        double psi = rng.range(0.02, RF_PI - 0.02), rr = std::max(rho, 1e-3 * std::max(c.base_radius, c.apex_radius));
+        RfVec3 e = rf_vec3_add(rf_vec3_scale(g, std::cos(psi)), rf_vec3_scale(tau, std::sin(psi)));
+        target = rf_vec3_add(p, rf_vec3_scale(n, eps * rr));
+        o = rf_vec3_sub(target, rf_vec3_scale(e, rr * rng.pow10(0.05, 3)));
+    }
+    RfVec3 wo = pl.map(o);
+    *out = rf_ray(wo, rf_vec3_sub(pl.map(target), wo));
     return true;
 }
 
 // Nearly parallel to a random triangle, polygon or plane: an in-plane direction tilted by 0 or
-// +-10^U(-17, -2), from a point at height 0 or +-10^U(-16, -1) of the size above it.
+// +-10^U(-17, -2), from a point at height 0 or +-10^U(-16, -1) of the size above it; or nearly
+// parallel to a generator of a cone (the quadratic's linear case), from near its surface.
 bool gen_parallel(const World &w, Rng &rng, RfRay *out)
 {
     const auto &items = w.orc->items();
-    std::vector<int> pl;
-    for (size_t i = 0; i < items.size(); i++)
-        if (items[i].kind == ITEM_TRI || items[i].kind == ITEM_PLANE)
-            pl.push_back((int)i);
-    if (pl.empty())
+    Placed pl;
+    if (!pick(w, rng, 1u << ITEM_TRI | 1u << ITEM_PLANE | 1u << ITEM_POLY | 1u << ITEM_CONE, pl))
         return false;
-    const Item &it = items[(size_t)pl[(size_t)rng.below((int)pl.size())]];
+    const Item &it = items[(size_t)pl.item];
     RfVec3 n, q;
     double size;
     if (it.kind == ITEM_TRI) {
-        n = rf_vec3_normalize(rf_vec3_cross(rf_vec3_sub(it.p[1], it.p[0]), rf_vec3_sub(it.p[2], it.p[0])));
+        RfVec3 p[3] = {pl.map(it.p[0]), pl.map(it.p[1]), pl.map(it.p[2])};
+        n = rf_vec3_normalize(rf_vec3_cross(rf_vec3_sub(p[1], p[0]), rf_vec3_sub(p[2], p[0])));
         double l1 = rng.u(), l2 = rng.u();
         if (l1 + l2 > 1)
             l1 = 1 - l1, l2 = 1 - l2;
-        q = rf_vec3_add(it.p[0], rf_vec3_add(rf_vec3_scale(rf_vec3_sub(it.p[1], it.p[0]), l1),
-                                             rf_vec3_scale(rf_vec3_sub(it.p[2], it.p[0]), l2)));
-        size = rf_vec3_length(rf_vec3_sub(it.box.hi, it.box.lo));
+        q = rf_vec3_add(p[0], rf_vec3_add(rf_vec3_scale(rf_vec3_sub(p[1], p[0]), l1),
+                                          rf_vec3_scale(rf_vec3_sub(p[2], p[0]), l2)));
+        size = pl.M ? rf_vec3_length(rf_vec3_sub(rf_vec3_add(rf_vec3_sub(p[1], p[0]), p[2]), p[0]))
+                    : rf_vec3_length(rf_vec3_sub(it.box.hi, it.box.lo));
+    } else if (it.kind == ITEM_POLY) {
+        std::vector<RfVec3> v;
+        RfAabb b = rf_aabb_empty();
+        n = rf_vec3(0, 0, 0);
+        for (int k = 0; k < it.poly_count; k++) {
+            v.push_back(pl.map(w.orc->vertex(it, k)));
+            b = rf_aabb_add_point(b, v.back());
+        }
+        for (size_t k = 0; k < v.size(); k++)
+            n = rf_vec3_add(n, rf_vec3_cross(v[k], v[(k + 1) % v.size()]));
+        n = rf_vec3_normalize(n);
+        q = rf_vec3_lerp(v[(size_t)rng.below((int)v.size())], v[(size_t)rng.below((int)v.size())], rng.u());
+        size = rf_vec3_length(rf_vec3_sub(b.hi, b.lo));
+    } else if (it.kind == ITEM_CONE) {
+        const RfCone &c = it.cone;
+        ConeFrame f = cone_frame(c);
+        double rho, dr = c.apex_radius - c.base_radius;
+        RfVec3 radial;
+        RfVec3 p = cone_point(c, f, rng.u(), rng.range(0, 2 * RF_PI), &rho, &radial);
+        RfVec3 g = rf_vec3_normalize(rf_vec3_add(rf_vec3_scale(f.k, f.H), rf_vec3_scale(radial, dr)));
+        RfVec3 nn = rf_vec3_normalize(rf_vec3_sub(radial, rf_vec3_scale(f.k, dr / f.H)));
+        double sz = std::max({f.H, c.base_radius, c.apex_radius});
+        double tilt = rng.below(4) == 0 ? 0 : (rng.below(2) ? 1 : -1) * rng.pow10(-17, -2);
+        double h = rng.below(4) == 0 ? 0 : (rng.below(2) ? 1 : -1) * rng.pow10(-16, -1) * sz;
+        RfVec3 d = rf_vec3_add(g, rf_vec3_scale(nn, tilt));
+        RfVec3 o = rf_vec3_add(rf_vec3_sub(p, rf_vec3_scale(d, sz * rng.range(0.3, 2))), rf_vec3_scale(nn, h));
+        RfVec3 wo = pl.map(o);
+        *out = rf_ray(wo, rf_vec3_sub(pl.map(rf_vec3_add(o, d)), wo));
+        return true;
     } else {
         n = rf_vec3_normalize(it.pl.normal);
         size = rf_vec3_length(rf_vec3_sub(w.bounds.hi, w.bounds.lo));
         q = rf_vec3_add(rf_vec3_scale(n, it.pl.offset), rf_vec3_scale(rf_vec3_normalize(rf_vec3_cross(n, rng.unit())), size * rng.u()));
+        if (pl.M) { // a plane of an object: the plane through the placed point, placed normal
+            RfVec3 a = pl.map(q), t1, t2;
+            frame(n, &t1, &t2);
+            RfVec3 b = pl.map(rf_vec3_add(q, t1)), c = pl.map(rf_vec3_add(q, t2));
+            n = rf_vec3_normalize(rf_vec3_cross(rf_vec3_sub(b, a), rf_vec3_sub(c, a)));
+            q = a;
+        }
     }
     RfVec3 u = rf_vec3_normalize(rf_vec3_cross(n, rng.unit()));
     double tilt = rng.below(4) == 0 ? 0 : (rng.below(2) ? 1 : -1) * rng.pow10(-17, -2);
@@ -642,11 +1228,11 @@ bool gen_parallel(const World &w, Rng &rng, RfRay *out)
 
 // ---- the ray classes -----------------------------------------------------------------------
 
-const char *const kAllClasses[] = {"uniform", "edges", "grazing", "parallel", "far",     "radii",
-                                   "surface", "acne",  "leak",    "optics",   "invalid"};
+const char *const kAllClasses[] = {"uniform", "edges",  "grazing", "parallel", "far",      "radii",    "surface",
+                                   "acne",    "leak",   "optics",  "invalid",  "cones",    "polygons", "instances"};
 
 // Rays starting on surfaces: a primary ray's tracer hit p, then a secondary ray from
-// rf_ray_offset_origin(p, n, dir) (mirror, random outgoing or random transmitted direction),
+// rf_hit_offset_origin(h, dir) (mirror, random outgoing or random transmitted direction),
 // checked like any other ray; in addition its origin must lie exactly on the side of its own
 // surface it leaves to (else it re-hits that surface: self-intersection, counted as acne).
 void surface_ray(const World &w, const Opts &o, Rng &rng, Stats &st)
@@ -669,32 +1255,63 @@ void surface_ray(const World &w, const Opts &o, Rng &rng, Stats &st)
     }
     if (rf_vec3_dot(d, n) == 0)
         return;
-    RfRay r = rf_ray(rf_ray_offset_origin(h.point, n, d, o.fixed_offset), d);
-    Check c = check_ray(w, o, r, w.interior_mesh(r.origin));
-    tally(st, w, r, c);
+    RfSurfaceHit hn = h; // the renderer's policy, with the normal the new ray leaves by
+    hn.normal = n;
+    RfRay r = rf_ray(rf_hit_offset_origin(&hn, d, o.fixed_offset), d);
+    check_and_tally(st, w, o, r, w.interior_mesh(r.origin));
     // the exact side of the new origin against the primitive it leaves (its fan triangles are
-    // coplanar for the quads built here; a sphere's side is exact too)
-    if (w.orc->items_of(prim).empty()) // a primitive of an instanced object
+    // coplanar for the quads built here; a sphere's and a cone's side are exact too)
+    const auto &its = w.orc->items_of(prim);
+    if (its.empty() || w.orc->items()[(size_t)its[0]].level != 0) // a primitive of an instanced object
         return;
-    const Item &it = w.orc->items()[(size_t)w.orc->items_of(prim)[0]];
-    if (it.kind == ITEM_UNSUPPORTED) // a cone, non-convex polygon or instance: no exact side
-        return;
+    const Item &it = w.orc->items()[(size_t)its[0]];
     int want;
     if (it.kind == ITEM_SPHERE)
         want = rf_vec3_dot(d, rf_vec3_sub(h.point, it.s.center)) > 0 ? 1 : -1;
-    else {
-        RfVec3 nn = rf_vec3_cross(rf_vec3_sub(it.p[1], it.p[0]), rf_vec3_sub(it.p[2], it.p[0]));
+    else if (it.kind == ITEM_CONE) { // the outward normal at p: radial minus the slope along k
+        ConeFrame f = cone_frame(it.cone);
+        RfVec3 q = rf_vec3_sub(h.point, it.cone.base);
+        RfVec3 radial = rf_vec3_sub(q, rf_vec3_scale(f.k, rf_vec3_dot(q, f.k)));
+        double rl = rf_vec3_length(radial);
+        if (!(rl > 0))
+            return;
+        RfVec3 nn = rf_vec3_sub(rf_vec3_scale(radial, 1 / rl), rf_vec3_scale(f.k, (it.cone.apex_radius - it.cone.base_radius) / f.H));
+        want = rf_vec3_dot(d, nn) > 0 ? 1 : -1;
+    } else {
+        RfVec3 nn;
         if (it.kind == ITEM_PLANE)
             nn = it.pl.normal;
+        else if (it.kind == ITEM_POLY) {
+            nn = rf_vec3(0, 0, 0);
+            for (int k = 0; k < it.poly_count; k++)
+                nn = rf_vec3_add(nn, rf_vec3_cross(w.orc->vertex(it, k), w.orc->vertex(it, (k + 1) % it.poly_count)));
+        } else
+            nn = rf_vec3_cross(rf_vec3_sub(it.p[1], it.p[0]), rf_vec3_sub(it.p[2], it.p[0]));
         want = rf_vec3_dot(d, nn) > 0 ? 1 : -1;
     }
     st.acne_d++;
-    if (w.orc->side(w.orc->items_of(prim)[0], r.origin) != want) {
+    if (w.orc->side(its[0], r.origin) != want) {
         st.acne_n++;
         st.real++; // a self-intersection is a real error whatever the ray check said
         example(st, "self-intersection: origin (%a,%a,%a) on the wrong side of primitive %d", r.origin.x,
                 r.origin.y, r.origin.z, prim);
     }
+}
+
+// A random affine placement for the instances class: a rotation about a random axis, a
+// non-uniform scale s (1, U(0.3, 3), U(0.3, 3)) (s = 10^U(-2, 2)), sometimes a shear or a
+// mirror, then a translation to `at`.
+RfMat4 random_placement(Rng &rng, RfVec3 at, double s)
+{
+    RfMat4 m = rf_mat4_scale(s, s * rng.range(0.3, 3), s * rng.range(0.3, 3));
+    if (rng.below(3) == 0)
+        m = rf_mat4_mul(rf_mat4_shear_z(rng.range(-0.8, 0.8), rng.range(-0.8, 0.8)), m);
+    if (rng.below(4) == 0)
+        m = rf_mat4_mul(rf_mat4_scale(-1, 1, 1), m);
+    RfMat3 r;
+    if (rf_mat3_axis_angle(rng.unit(), rng.range(0, 2 * RF_PI), &r, nullptr, nullptr) == RF_OK)
+        m = rf_mat4_mul(rf_mat4_affine(r, rf_vec3(0, 0, 0)), m);
+    return rf_mat4_mul(rf_mat4_translate(at), m);
 }
 
 void run_rays(const char *cls, const Opts &o, Stats &st)
@@ -745,6 +1362,51 @@ void run_rays(const char *cls, const Opts &o, Stats &st)
             s = std::pow(10.0, -4 + 10.0 * sub / (subs - 1));
             at = rf_vec3_scale(rng.unit(), 3 * s * rng.u());
             w.mixed(at, s, rng);
+        } else if (c == "cones") {
+            // cylinders, frusta and cones with a tip (at either end), radii 1e-3 .. 1e3, lengths
+            // 0.3 .. 30 radii, axes random or along a coordinate axis; one-sided (outside),
+            // two-sided and inside-only (NFF's negative radii)
+            for (int i = 0; i < 6; i++) {
+                double r = rng.pow10(-3, 3), len = r * rng.pow10(-0.5, 1.5);
+                double rb = r, ra = i % 3 == 0 ? r : i % 3 == 1 ? r * rng.range(0.2, 2) : 0;
+                if (rng.below(2))
+                    std::swap(rb, ra);
+                RfVec3 ax = sub % 4 == 3 ? rf_vec3(0, 0, 1) : rng.unit();
+                RfVec3 base = rf_vec3_scale(rng.unit(), r * rng.range(0, 40));
+                unsigned fl = i % 2 ? (unsigned)RF_PRIM_TWO_SIDED : (sub % 3 == 2 ? (unsigned)RF_PRIM_INSIDE : 0u);
+                w.cone(base, rb, rf_vec3_add(base, rf_vec3_scale(ax, len)), ra, fl);
+            }
+        } else if (c == "polygons") {
+            // stars and gears: exactly planar with dyadic vertices, or in random planes with
+            // decimal coordinates; one- and two-sided
+            for (int i = 0; i < 4; i++)
+                w.star(rf_vec3_scale(rng.ball(), 3), rng.range(0.5, 2), (sub + i) % 2 == 0, i % 2 ? RF_PRIM_TWO_SIDED : 0, rng);
+        } else if (c == "instances") {
+            // one object (a closed icosphere, a sphere, a cone, a star polygon, a triangle, a
+            // plane in every fourth sub-scene) placed 3 times directly and twice through a
+            // group (a chain of two instances), far from the origin in later sub-scenes
+            int obj = w.begin_object("thing");
+            w.icosphere(rf_vec3(0, 0, 0), 1, 1 + sub % 2, 1e-3, rng);
+            w.sphere(rf_vec3(2.2, 0, 0), 0.6, sub % 2 ? RF_PRIM_TWO_SIDED : 0);
+            w.cone(rf_vec3(0, 2, 0), 0.5, rf_vec3(0.3, 3.5, 0.2), sub % 3 ? 0.2 : 0.0, sub % 2 ? 0 : RF_PRIM_TWO_SIDED);
+            w.star(rf_vec3(0, 0, -2.5), 1.2, sub % 2 == 0, RF_PRIM_TWO_SIDED, rng);
+            RfVec3 tri[3] = {{-2, -2, 0}, {-3, -2.5, 0.5}, {-2.2, -3.4, -0.3}};
+            w.poly(tri, 3, 0, -1);
+            if (sub % 4 == 3)
+                w.plane(rf_vec3(0, 0, 1), -6);
+            w.end_object(obj);
+            double sc = rng.pow10(-2, 2);
+            int grp = w.begin_object("group");
+            // apart: the object reaches 4.1 from its origin, 20 once placed (scale <= 3, shear
+            // <= 1.6), the group 45 + 20, 312 once placed: no two placements overlap, so a ray
+            // from inside one icosphere meets that one first
+            w.instance(obj, random_placement(rng, rf_vec3(0, 0, 0), 1));
+            w.instance(obj, random_placement(rng, rf_vec3(45, 0, 0), 1));
+            w.end_object(grp);
+            RfVec3 far = rf_vec3_scale(rng.unit(), sub < 4 ? 0 : std::pow(10.0, 6.0 * (sub - 4) / (subs - 5)));
+            for (int i = 0; i < 4; i++)
+                w.instance(i < 3 ? obj : grp,
+                           random_placement(rng, rf_vec3_add(far, rf_vec3(700 * sc * i, 0, 0)), sc));
         }
         w.finish();
         if (c == "surface") { // until n secondary rays (a primary ray may miss)
@@ -754,27 +1416,33 @@ void run_rays(const char *cls, const Opts &o, Stats &st)
             continue;
         }
         for (long k = 0; k < n; k++) {
-            RfRay r;
+            RfRay r = rf_ray(rf_vec3(0, 0, 0), rf_vec3(0, 0, 0));
             int interior = -1;
-            if (c == "uniform" || c == "far") {
-                r = gen_uniform(w, rng);
-                interior = w.interior_mesh(r.origin);
-            } else if (c == "edges") {
-                r = gen_edges(w, rng, &interior);
-            } else if (c == "grazing") {
-                if (!gen_grazing(w, rng, &r))
-                    continue;
-            } else if (c == "parallel") {
-                if (!gen_parallel(w, rng, &r))
-                    continue;
-            } else if (c == "radii") {
-                r.origin = rng.ball();
-                r.dir = rf_vec3_sub(rf_vec3_add(at, rf_vec3_scale(rng.ball(), 1.3 * s)), r.origin);
-                interior = w.interior_mesh(r.origin);
+            int mode = c == "cones" || c == "polygons" || c == "instances" ? rng.below(4) : -1;
+            try {
+                if (c == "uniform" || c == "far" || mode == 0) {
+                    r = gen_uniform(w, rng);
+                    interior = w.interior_mesh(r.origin);
+                } else if (c == "edges" || mode == 1) {
+                    r = gen_edges(w, rng, &interior);
+                } else if (c == "grazing" || (mode == 2 && c != "polygons")) {
+                    if (!gen_grazing(w, rng, &r))
+                        continue;
+                } else if (c == "parallel" || mode >= 2) {
+                    if (!gen_parallel(w, rng, &r))
+                        continue;
+                } else if (c == "radii") {
+                    r.origin = rng.ball();
+                    r.dir = rf_vec3_sub(rf_vec3_add(at, rf_vec3_scale(rng.ball(), 1.3 * s)), r.origin);
+                    interior = w.interior_mesh(r.origin);
+                }
+            } catch (const std::exception &ex) {
+                not_representable(st, r, ex.what());
+                continue;
             }
             if (rf_vec3_dot(r.dir, r.dir) == 0)
                 continue;
-            tally(st, w, r, check_ray(w, o, r, interior));
+            check_and_tally(st, w, o, r, interior);
         }
     }
 }
@@ -785,24 +1453,29 @@ void run_file(const char *cls, const Opts &o, World &w, Stats &st)
     Rng rng(o.seed * 1000003ULL + (uint64_t)std::hash<std::string>()(cls));
     std::string c = cls;
     for (long k = 0; k < o.rays; k++) {
-        RfRay r;
+        RfRay r = rf_ray(rf_vec3(0, 0, 0), rf_vec3(0, 0, 0));
         int interior = -1;
-        if (c == "uniform" || c == "far" || c == "radii") {
-            r = gen_uniform(w, rng);
-        } else if (c == "edges") {
-            r = gen_edges(w, rng, &interior);
-        } else if (c == "grazing") {
-            if (!gen_grazing(w, rng, &r))
-                return;
-        } else if (c == "parallel") {
-            if (!gen_parallel(w, rng, &r))
-                return;
-        } else {
-            surface_ray(w, o, rng, st);
+        try {
+            if (c == "uniform" || c == "far" || c == "radii") {
+                r = gen_uniform(w, rng);
+            } else if (c == "edges") {
+                r = gen_edges(w, rng, &interior);
+            } else if (c == "grazing") {
+                if (!gen_grazing(w, rng, &r))
+                    return;
+            } else if (c == "parallel") {
+                if (!gen_parallel(w, rng, &r))
+                    return;
+            } else {
+                surface_ray(w, o, rng, st);
+                continue;
+            }
+        } catch (const std::exception &ex) {
+            not_representable(st, r, ex.what());
             continue;
         }
-        if (rf_vec3_dot(r.dir, r.dir) > 0)
-            tally(st, w, r, check_ray(w, o, r, interior));
+        if (!finite_ray(r) || rf_vec3_dot(r.dir, r.dir) > 0)
+            check_and_tally(st, w, o, r, interior);
     }
 }
 
@@ -813,7 +1486,7 @@ void run_file(const char *cls, const Opts &o, World &w, Stats &st)
 // is placed at elevation 10^U(-4, 0.18) rad above the surface there, and the sample counts
 // when the light is exactly visible from the true surface point (cube: L strictly on the
 // outer side of the hit triangle's plane, CGAL orientation; sphere: <L-c, p-c> > r^2 (1 +
-// 1e-6), far beyond p's rounding). The tracer's shadow ray from rf_ray_offset_origin(p, n, l)
+// 1e-6), far beyond p's rounding). The tracer's shadow ray from rf_hit_offset_origin(h, l)
 // must then reach the light: any hit is a false self-shadow.
 void run_acne(const Opts &o, Stats &st)
 {
@@ -860,7 +1533,9 @@ void run_acne(const Opts &o, Stats &st)
                 RfVec3 l = rf_vec3_normalize(rf_vec3_sub(Lp, h.point));
                 if (!visible || rf_vec3_dot(n, l) <= 0)
                     continue;
-                RfRay sr = rf_ray(rf_ray_offset_origin(h.point, n, l, o.fixed_offset), l);
+                RfSurfaceHit hn = h;
+                hn.normal = n;
+                RfRay sr = rf_ray(rf_hit_offset_origin(&hn, l, o.fixed_offset), l);
                 double dist = rf_vec3_length(rf_vec3_sub(Lp, sr.origin));
                 RfSurfaceHit sh;
                 st.rays++;
@@ -903,7 +1578,12 @@ void run_leak(const Opts &o, Stats &st)
             if (!occluded)
                 continue;
             RfVec3 l = rf_vec3_normalize(rf_vec3_sub(Lp, p));
-            RfRay sr = rf_ray(rf_ray_offset_origin(p, rf_vec3(0, 0, 1), l, o.fixed_offset), l);
+            RfSurfaceHit hp; // a hit at p on the plane z = z0, seen from nearby
+            std::memset(&hp, 0, sizeof hp);
+            hp.point = p;
+            hp.normal = rf_vec3(0, 0, 1);
+            hp.scale = std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)));
+            RfRay sr = rf_ray(rf_hit_offset_origin(&hp, l, o.fixed_offset), l);
             RfSurfaceHit sh;
             st.rays++;
             st.acne_d++;
@@ -1085,45 +1765,57 @@ void run_invalid(const Opts &o, Stats &st)
     }
 }
 
+
 // ---- driver ------------------------------------------------------------------------------------
 
 const char *const kFileClasses[] = {"uniform", "edges", "grazing", "parallel", "surface"};
 
-bool load_world(const char *path, World &w)
+// Loads a scene and prepares the oracle and the tracer. On failure *err says why: the loader's
+// message (file:line:col), or the verifier's refusal of a scene outside its range with the
+// primitive's position (RfPrimitive.loc: its statement in the scene or in the mesh file it
+// includes).
+bool load_world(const char *path, World &w, std::string *err)
 {
-    char err[1024];
+    char msg[1024];
     rf_scene_free(&w.sc);
     rf_scene_init(&w.sc);
-    if (rf_scene_load(path, nullptr, &w.sc, err, sizeof err) != RF_OK) {
-        fprintf(stderr, "%s\n", err);
+    if (rf_scene_load(path, nullptr, &w.sc, msg, sizeof msg) != RF_OK) {
+        *err = msg;
         return false;
     }
     w.prim_mesh.assign(w.sc.prim_count, -1);
     rf_scene_bounds(&w.sc, &w.bounds.lo, &w.bounds.hi);
-    w.finish();
+    try {
+        w.finish();
+    } catch (const SceneError &e) {
+        if (e.loc.line > 0)
+            snprintf(msg, sizeof msg, "%s:%d:%d: %s; scene refused", path, e.loc.line, e.loc.col, e.what());
+        else
+            snprintf(msg, sizeof msg, "%s: %s; scene refused", path, e.what());
+        *err = msg;
+        return false;
+    } catch (const std::exception &e) {
+        snprintf(msg, sizeof msg, "%s: the exact oracle cannot represent this scene (%s); scene refused", path, e.what());
+        *err = msg;
+        return false;
+    }
     return true;
 }
 
-Stats run_class(const char *cls, const Opts &o, World *file_world)
+void run_class_body(const char *cls, const Opts &o, World *file_world, Stats &st)
 {
-    Stats st;
-    memset(&st, 0, sizeof st);
-    snprintf(st.name, sizeof st.name, "%s", cls);
-    auto t0 = std::chrono::steady_clock::now();
     std::string c = cls;
     if (c.compare(0, 6, "scene:") == 0) { // a scene file: every file class, one row
-        const char *path = cls + 6, *base = strrchr(path, '/');
-        snprintf(st.name, sizeof st.name, "%s", base ? base + 1 : path);
+        const char *path = cls + 6;
         World w;
         Opts so = o;
         so.rays = o.scene_rays;
-        if (!load_world(path, w)) {
-            st.real = 1;
-            example(st, "cannot load %s", path);
-        } else {
+        std::string err;
+        if (!load_world(path, w, &err))
+            row_error(st, "%s", err.c_str());
+        else
             for (const char *fc : kFileClasses)
                 run_file(fc, so, w, st);
-        }
     } else if (file_world)
         run_file(cls, o, *file_world, st);
     else if (c == "acne")
@@ -1136,6 +1828,27 @@ Stats run_class(const char *cls, const Opts &o, World *file_world)
         run_invalid(o, st);
     else
         run_rays(cls, o, st);
+}
+
+Stats run_class(const char *cls, const Opts &o, World *file_world)
+{
+    Stats st;
+    memset(&st, 0, sizeof st);
+    snprintf(st.name, sizeof st.name, "%s", cls);
+    if (strncmp(cls, "scene:", 6) == 0) {
+        const char *base = strrchr(cls + 6, '/');
+        snprintf(st.name, sizeof st.name, "%s", base ? base + 1 : cls + 6);
+    }
+    auto t0 = std::chrono::steady_clock::now();
+    // anything the oracle throws outside a ray (a built-in scene it refuses, the allocator)
+    // ends the row with a message instead of the process
+    try {
+        run_class_body(cls, o, file_world, st);
+    } catch (const SceneError &e) {
+        row_error(st, "%s: %s", cls, e.what());
+    } catch (const std::exception &e) {
+        row_error(st, "%s: %s", cls, e.what());
+    }
     st.secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return st;
 }
@@ -1150,8 +1863,11 @@ void print_table(const std::vector<Stats> &rows, FILE *f)
         char acne[32] = "-";
         if (s.acne_d)
             snprintf(acne, sizeof acne, "%ld/%ld", s.acne_n, s.acne_d);
-        fprintf(f, "%-13s %10ld %10ld %10ld %6ld %11ld %8ld %12s %8.1f\n", s.name, s.rays, s.agree, s.amb, s.real,
-                s.edge_miss, s.skipped, acne, s.secs);
+        if (s.error)
+            fprintf(f, "%-13s %10s\n", s.name, "error");
+        else
+            fprintf(f, "%-13s %10ld %10ld %10ld %6ld %11ld %8ld %12s %8.1f\n", s.name, s.rays, s.agree, s.amb,
+                    s.real, s.edge_miss, s.skipped, acne, s.secs);
         tot.rays += s.rays, tot.agree += s.agree, tot.amb += s.amb, tot.real += s.real;
         tot.edge_miss += s.edge_miss, tot.skipped += s.skipped, tot.acne_n += s.acne_n, tot.acne_d += s.acne_d;
         tot.secs += s.secs;
@@ -1164,6 +1880,9 @@ void print_table(const std::vector<Stats> &rows, FILE *f)
     for (const Stats &s : rows)
         for (int i = 0; i < s.n_examples; i++)
             fprintf(f, "real (%s): %s\n", s.name, s.examples[i]);
+    for (const Stats &s : rows)
+        if (s.skipped)
+            fprintf(f, "skipped (not representable) (%s): %ld rays; the first: %s\n", s.name, s.skipped, s.skip_note);
 }
 
 // Runs the classes, up to `jobs` at once in child processes (no shared state: each child
@@ -1211,10 +1930,11 @@ std::vector<Stats> run_all(const std::vector<std::string> &classes, const Opts &
         }
         close(it->second.second);
         if (got != sizeof st || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-            fprintf(stderr, "refray-verify: class %s crashed\n", classes[it->second.first].c_str());
             memset(&st, 0, sizeof st);
             snprintf(st.name, sizeof st.name, "%s", classes[it->second.first].c_str());
-            st.real = 1;
+            row_error(st, "class %s crashed (%s %d)", classes[it->second.first].c_str(),
+                      WIFSIGNALED(status) ? "signal" : "exit status",
+                      WIFSIGNALED(status) ? WTERMSIG(status) : WEXITSTATUS(status));
         }
         rows[it->second.first] = st;
         running.erase(it);
@@ -1234,20 +1954,17 @@ void usage(FILE *f)
             "                  scenes built in code); several scenes or --stress: one row per scene with\n"
             "                  --scene-rays rays per class (default rays/50)\n"
             "  --class         one of uniform edges grazing parallel far radii surface acne leak optics\n"
-            "                  invalid (repeatable; default: all)\n"
+            "                  invalid cones polygons instances (repeatable; default: all)\n"
             "  --rays N        rays per class (default 100000)\n"
             "  --stress        every class, the table of make stress\n"
             "  --triangle, --sphere   test the §3.5 kernels with these methods instead of the tracer\n"
             "  --fixed-offset  replace the self-intersection policy by a fixed absolute offset\n"
-            "Exit status: 0 when no real disagreement, 1 otherwise, 2 on bad usage. docs/verify.md\n");
+            "Exit status: 0 when no real disagreement, 1 otherwise, 2 on bad usage or when a scene\n"
+            "cannot be loaded or is outside the verifier's range. docs/verify.md\n");
 }
 
-} // namespace
-} // namespace rv
-
-int main(int argc, char **argv)
+int verify_main(int argc, char **argv)
 {
-    using namespace rv;
     Opts o;
     std::vector<std::string> classes;
     std::vector<const char *> scenes;
@@ -1306,8 +2023,11 @@ int main(int argc, char **argv)
     if (scenes.size() == 1 && !stress) { // one scene: a row per class over it
         o.scene = scenes[0];
         fw.reset(new World);
-        if (!load_world(o.scene, *fw))
+        std::string err;
+        if (!load_world(o.scene, *fw, &err)) {
+            fprintf(stderr, "refray-verify: %s\n", err.c_str());
             return 2;
+        }
         if (classes.empty())
             classes.assign(std::begin(kFileClasses), std::end(kFileClasses));
         for (const std::string &c : classes)
@@ -1329,8 +2049,35 @@ int main(int argc, char **argv)
         printf("planted: fixed self-intersection offset %g\n", o.fixed_offset);
     print_table(rows, stdout);
     long real = 0;
-    for (const Stats &s : rows)
+    int errors = 0;
+    for (const Stats &s : rows) {
         real += s.real;
-    printf("%s\n", real ? "FAIL: real disagreements" : "OK: no real disagreement");
-    return real ? 1 : 0;
+        if (s.error) {
+            errors++;
+            fprintf(stderr, "refray-verify: %s\n", s.error_msg);
+        }
+    }
+    if (real)
+        printf("FAIL: real disagreements\n");
+    else if (errors)
+        printf("ERROR: %d row%s could not run (see above)\n", errors, errors > 1 ? "s" : "");
+    else
+        printf("OK: no real disagreement\n");
+    return real ? 1 : errors ? 2 : 0;
+}
+
+} // namespace
+} // namespace rv
+
+int main(int argc, char **argv)
+{
+    // the last line of defence: no exception ends the process with an abort
+    try {
+        return rv::verify_main(argc, argv);
+    } catch (const std::bad_alloc &) {
+        fprintf(stderr, "refray-verify: out of memory\n");
+    } catch (const std::exception &e) {
+        fprintf(stderr, "refray-verify: internal error: %s\n", e.what());
+    }
+    return 2;
 }

@@ -30,7 +30,8 @@ if [ -z "$CC" ]; then
     exit 0
 fi
 
-$MAKE --no-print-directory -f fuzz/fuzz.mk -j"$JOBS" FUZZ_CC="$CC" FUZZ_BUILD="$B" FUZZ_TARGETS="$TARGETS" || exit 2
+# a make of its own (not the caller's jobserver or command-line variables)
+env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL $MAKE --no-print-directory -f fuzz/fuzz.mk -j"$JOBS" FUZZ_CC="$CC" FUZZ_BUILD="$B" FUZZ_TARGETS="$TARGETS" || exit 2
 sh fuzz/seed.sh "$B" || exit 2
 
 # per target: the largest input libFuzzer makes (bytes)

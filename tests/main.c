@@ -24,8 +24,10 @@ extern const RfTest rf_tests_compare[];
 extern const RfTest rf_tests_mesh[];
 extern const RfTest rf_tests_docs[];
 extern const RfTest rf_tests_distributed[];
+extern const RfTest rf_tests_robust[];
 extern const RfTest rf_tests_sampling[];
 extern const RfTest rf_tests_bench[];
+extern const RfTest rf_tests_fuzz_regress[];
 
 static const RfTest *const suites[] = {
     rf_tests_vecmat, rf_tests_geometry, rf_tests_transform, rf_tests_formula, rf_tests_cli,
@@ -38,6 +40,8 @@ static const RfTest *const suites[] = {
     rf_tests_sampling,
     rf_tests_bench,
     rf_tests_distributed,
+    rf_tests_robust,
+    rf_tests_fuzz_regress,
 };
 
 int rf_test_failed_checks;

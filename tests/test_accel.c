@@ -60,7 +60,7 @@ static int scene_rays(const RfScene *s, const RfTracer *t, RfTestRng *rng, RfRay
                 RfVec3 d = rf_vec3(rf_test_uniform(rng, -1, 1), rf_test_uniform(rng, -1, 1), rf_test_uniform(rng, -1, 1));
                 if (rf_vec3_dot(d, h.normal) < 0)
                     d = rf_vec3_neg(d);
-                rays[n++] = rf_ray(rf_ray_offset_origin(h.point, h.normal, d, 0), d);
+                rays[n++] = rf_ray(rf_hit_offset_origin(&h, d, 0), d);
             }
         }
     while (bounded && n < max) {

@@ -4,6 +4,7 @@
  * `timeout`, so a hang fails the test instead of stopping the suite. */
 #define _XOPEN_SOURCE 700
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -246,9 +247,79 @@ static void t_shadows_from_either_side(void)
     }
 }
 
+
+/* Scale-invariant robustness: the whitted scene scaled by powers of ten from 1e-12 to 1e12
+ * (light intensities by the square, so the irradiance stays) renders the same image bit for
+ * bit, and moved by 1e3 and 1e6 keeps at least 99.9 % of its values within 1e-6 and loses no
+ * light (no value that is lit at scale 1 goes black). */
+static int whitted_at(double s, double shift, RfImage *img)
+{
+    char text[4096], err[512];
+    RfScene sc;
+#define P(v) ((v) * s + shift)
+    snprintf(text, sizeof text,
+             "camera eye %.17g %.17g %.17g target %.17g %.17g %.17g up 0 1 0 fov 40\nresolution 96 72\ndepth 8\n"
+             "background 0\nambient 0.05\nlight point %.17g %.17g %.17g intensity %.17g\n"
+             "material ground kd 0.6 ka 0.6\npolygon 4 %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n"
+             "material red kd 0.7 0.08 0.08 ka 0.7 0.08 0.08 ks 0.5 shininess 50\nsphere %.17g %.17g %.17g %.17g\n"
+             "material mirror kr 0.9\nsphere %.17g %.17g %.17g %.17g\n"
+             "material glass kr 1 kt 1 ior 1.5 fresnel\nsphere %.17g %.17g %.17g %.17g\n",
+             P(0.0), P(2.6), P(7.0), P(0.0), P(0.6), P(0.0), P(-5.0), P(6.0), P(2.0), 60.0 * s * s, P(-30.0), P(0.0),
+             P(-30.0), P(-30.0), P(0.0), P(30.0), P(30.0), P(0.0), P(30.0), P(30.0), P(0.0), P(-30.0), P(-2.0), P(0.8),
+             P(-0.3), 0.8 * s, P(0.1), P(1.0), P(-1.3), 1.0 * s, P(1.1), P(0.6), P(1.4), 0.6 * s);
+#undef P
+    if (rf_scene_read_rf("w.rf", text, strlen(text), &sc, err, sizeof err) != RF_OK) {
+        rf_test_fail(__FILE__, __LINE__, "%s", err);
+        return 0;
+    }
+    RfRenderOptions o = rf_render_options_default();
+    o.threads = 2;
+    RfRenderStats st;
+    int ok = rf_render(&sc, &o, img, &st) == RF_OK;
+    rf_scene_free(&sc);
+    return ok;
+}
+
+static void t_scale_invariance(void)
+{
+    RfImage ref, img;
+    if (!whitted_at(1.0, 0.0, &ref))
+        return;
+    size_t n = (size_t)ref.width * ref.height * 3;
+    static const double scales[] = {1e-12, 1e-6, 1e-3, 1e3, 1e6, 1e12};
+    for (size_t k = 0; k < sizeof scales / sizeof scales[0]; k++) {
+        if (!whitted_at(scales[k], 0.0, &img))
+            continue;
+        size_t changed = 0;
+        for (size_t i = 0; i < n; i++)
+            changed += memcmp(&img.data[i], &ref.data[i], sizeof(float)) != 0;
+        rf_test_checks++;
+        if (changed)
+            rf_test_fail(__FILE__, __LINE__, "whitted scaled by %g: %zu of %zu values differ", scales[k], changed, n);
+        rf_image_free(&img);
+    }
+    static const double shifts[] = {1e3, 1e6};
+    for (size_t k = 0; k < 2; k++) {
+        if (!whitted_at(1.0, shifts[k], &img))
+            continue;
+        size_t far = 0, lost = 0;
+        for (size_t i = 0; i < n; i++) {
+            far += fabs((double)img.data[i] - ref.data[i]) > 1e-6;
+            lost += ref.data[i] > 0.05f && img.data[i] == 0.0f;
+        }
+        rf_test_checks++;
+        if (far * 1000 > n || lost)
+            rf_test_fail(__FILE__, __LINE__, "whitted moved by %g: %zu of %zu values off by more than 1e-6, %zu lost",
+                         shifts[k], far, n, lost);
+        rf_image_free(&img);
+    }
+    rf_image_free(&ref);
+}
+
 const RfTest rf_tests_robust[] = {
     {"robust_bad_input_table", t_bad_input_table},
     {"robust_outputs_links_and_batches", t_outputs_links_and_batches},
     {"robust_shadows_from_either_side", t_shadows_from_either_side},
+    {"robust_scale_invariance", t_scale_invariance},
     RF_TEST_END,
 };

@@ -7,6 +7,8 @@
 
 #include "refray/render.h"
 #include "refray/scene.h"
+#include "refray/numeric.h"
+#include "refray/scene_io.h"
 #include "rf_test.h"
 
 static const char *verify_bin(void)
@@ -106,17 +108,39 @@ static void test_stress_planted_offset(void)
     RF_CHECK(table_row(out, "leak", &r) && r.acne > 0);
 }
 
-/* The offset policy: relative to the point's magnitude (floor 1), along the normal to the side
- * the new ray leaves by; a fixed offset replaces it. */
+/* The offset policy: RF_RAY_OFFSET_REL times the hit's scale (no floor: a scene 1e-12 small
+ * gets offsets 1e-12 small), along the normal to the side the new ray leaves by; a fixed
+ * offset replaces it. The scale is the largest coordinate of the hit point and its ray's origin,
+ * times a factor for cones and instances. */
 static void test_stress_offset_policy(void)
 {
-    RfVec3 n = rf_vec3(0, 0, 1);
-    RfVec3 a = rf_ray_offset_origin(rf_vec3(1e6, 0, 0), n, rf_vec3(0, 1, 1), 0.0);
-    RF_CHECK_NEAR(a.z, 1e6 * 1e-9, 1e-12, 0);
-    RfVec3 b = rf_ray_offset_origin(rf_vec3(0, 0, 0), n, rf_vec3(0, 1, -1), 0.0);
-    RF_CHECK_NEAR(b.z, -1e-9, 1e-12, 0);
-    RfVec3 c = rf_ray_offset_origin(rf_vec3(1e6, 0, 0), n, rf_vec3(0, 1, 1), 1e-4);
-    RF_CHECK_NEAR(c.z, 1e-4, 1e-12, 0);
+    RfSurfaceHit h;
+    memset(&h, 0, sizeof h);
+    h.point = rf_vec3(1e6, 0, 0);
+    h.normal = rf_vec3(0, 0, 1);
+    h.scale = 1e6;
+    RF_CHECK_NEAR(rf_hit_offset_origin(&h, rf_vec3(0, 1, 1), 0.0).z, 1e6 * RF_RAY_OFFSET_REL, 1e-12, 0);
+    RF_CHECK_NEAR(rf_hit_offset_origin(&h, rf_vec3(0, 1, -1), 0.0).z, -1e6 * RF_RAY_OFFSET_REL, 1e-12, 0);
+    RF_CHECK_NEAR(rf_hit_offset_origin(&h, rf_vec3(0, 1, 1), 1e-4).z, 1e-4, 1e-12, 0);
+    h.point = rf_vec3(1e-12, 0, 0);
+    h.scale = 1e-12;
+    RF_CHECK_NEAR(rf_hit_offset_origin(&h, rf_vec3(0, 1, 1), 0.0).z, 1e-12 * RF_RAY_OFFSET_REL, 1e-12, 0);
+    /* the tracer's scale: the ray's origin counts, and a cone's hit gets its factor */
+    static const char text[] = "camera eye 0 0 5 target 0 0 0 up 0 1 0 fov 40\nsphere 0 0 0 1\n"
+                               "cone 10 0 0 1  10 2 0 0.5\n";
+    RfScene s;
+    char err[256];
+    RfTracer *t = NULL;
+    if (rf_scene_read_rf("t.rf", text, strlen(text), &s, err, sizeof err) != RF_OK || rf_tracer_create(&s, &t) != RF_OK) {
+        rf_test_fail(__FILE__, __LINE__, "%s", err);
+        return;
+    }
+    RF_CHECK(rf_tracer_intersect(t, rf_ray(rf_vec3(0, 0, 300), rf_vec3(0, 0, -1)), 0.0, HUGE_VAL, &h) == 0);
+    RF_CHECK_NEAR(h.scale, 300.0, 0, 0);
+    RF_CHECK(rf_tracer_intersect(t, rf_ray(rf_vec3(10, 0.5, 5), rf_vec3(0, 0, -1)), 0.0, HUGE_VAL, &h) == 1);
+    RF_CHECK_NEAR(h.scale, 10.0 * RF_RAY_OFFSET_CONE, 1e-15, 0);
+    rf_tracer_free(t);
+    rf_scene_free(&s);
 }
 
 /* The renderer counts samples that are not finite and never stores them: a NaN light

@@ -47,7 +47,7 @@ typedef struct {
     int local_only;      /* 1: primary rays and local Phong only (no shadows, reflection,
                             refraction): the comparator's matching mode */
     uint64_t seed;       /* of the counter-based random numbers (jitter) */
-    double fixed_offset; /* 0: the self-intersection policy (rf_ray_offset_origin); > 0 replaces it
+    double fixed_offset; /* 0: the self-intersection policy (rf_hit_offset_origin); > 0 replaces it
                             by this absolute offset: a planted bug for the verifier only */
     RfTracerOptions accel; /* threads 0 there: the render's thread count */
     unsigned kernel;     /* 0: the kernel the scene needs; else the parts of a compiled kernel
@@ -118,6 +118,8 @@ typedef struct {
     RfVec3 point, normal;   /* geometric normal, unit, facing the side the ray came from */
     RfVec3 shading_normal;  /* interpolated (smooth materials) or = normal, same side */
     int front;              /* 1 when the ray hit the outward / counter-clockwise side */
+    double scale;           /* the largest |coordinate| of the ray's origin and of the hit point:
+                               the point's rounding error is a few ulps of it (rf_hit_offset_origin) */
 } RfSurfaceHit;
 int rf_tracer_intersect(const RfTracer *tracer, RfRay ray, double t_min, double t_max, RfSurfaceHit *hit);
 /* §3.10 motion blur: the moving instances' transforms at one time, made once per sample path
@@ -139,11 +141,14 @@ int rf_tracer_occluded_cached(const RfTracer *tracer, RfRay ray, double t_min, d
 int rf_tracer_occluded_cached_at(const RfTracer *tracer, RfRay ray, const RfMotionState *ms, double t_min,
                                  double t_max, uint64_t *last);
 
-/* The self-intersection policy (numeric.h RF_RAY_OFFSET_REL): the hit point p moved off the
- * surface along the unit geometric normal n to the side dir leaves by. fixed_offset > 0 moves
- * it by that absolute distance instead (RfRenderOptions.fixed_offset, the verifier's planted
- * bug: a scale-blind epsilon must be caught by the acne measurement). */
-RfVec3 rf_ray_offset_origin(RfVec3 p, RfVec3 n, RfVec3 dir, double fixed_offset);
+
+/* The self-intersection policy (numeric.h RF_RAY_OFFSET_REL): the hit point moved off the
+ * surface along the unit geometric normal to the side dir leaves by, by RF_RAY_OFFSET_REL times
+ * h->scale, so that it scales with the coordinates the point was computed from, whatever the
+ * scene's size or place (no floor). fixed_offset > 0 moves it by that absolute distance instead
+ * (RfRenderOptions.fixed_offset, the verifier's planted bug: a scale-blind epsilon must be caught
+ * by the acne measurement). */
+RfVec3 rf_hit_offset_origin(const RfSurfaceHit *h, RfVec3 dir, double fixed_offset);
 
 /* Renders the scene into img (allocated here, RGB float, linear). */
 RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *img, RfRenderStats *stats);

@@ -25,7 +25,7 @@ static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHi
     if (rf_vec3_dot(h->normal, ls->l) <= 0.0) /* the light is behind the surface */
         return 0;
     if (RF_ON(RF_K_SHADOW) && !job->local_only) {
-        RfRay sr = rf_ray(rf_ray_offset_origin(h->point, h->normal, ls->l, job->fixed_offset), ls->l);
+        RfRay sr = rf_ray(rf_hit_offset_origin(h, ls->l, job->fixed_offset), ls->l);
         double dist = isinf(ls->distance) ? HUGE_VAL
                                           : rf_vec3_length(rf_vec3_sub(rf_vec3_add(h->point,
                                                 rf_vec3_scale(ls->l, ls->distance)), sr.origin));
@@ -202,7 +202,7 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
     if (mr > 0.0 && weight * mr >= job->min_contribution) {
         RfVec3 rdir = rf_reflect_dir(rf_vec3_neg(v), n);
         if (!glossy || RF_KNAME(glossy)(job, &rdir, m->gloss, h.normal, 1, 0, depth, ps)) {
-            RfRay rr = rf_ray(rf_ray_offset_origin(h.point, h.normal, rdir, job->fixed_offset), rdir);
+            RfRay rr = rf_ray(rf_hit_offset_origin(&h, rdir, job->fixed_offset), rdir);
             st->secondary_rays++;
             if (ps->log)
                 rf_kernel_log(ps->log, " -> mirror ray (depth %d)", depth + 1);
@@ -212,7 +212,7 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
     }
     if (refracts && mt > 0.0 && weight * mt >= job->min_contribution) {
         if (!glossy || RF_KNAME(glossy)(job, &tdir, m->gloss, h.normal, 0, 1, depth, ps)) {
-            RfRay tr = rf_ray(rf_ray_offset_origin(h.point, h.normal, tdir, job->fixed_offset), tdir);
+            RfRay tr = rf_ray(rf_hit_offset_origin(&h, tdir, job->fixed_offset), tdir);
             st->secondary_rays++;
             if (ps->log)
                 rf_kernel_log(ps->log, " -> refracted ray (depth %d)", depth + 1);

@@ -348,6 +348,15 @@ size_t rf_tracer_bytes(const RfTracer *t)
     return bytes;
 }
 
+/* max_i |v_i|, a NaN coordinate ignored */
+static double max_abs3(RfVec3 v)
+{
+    double m = 0.0, c[3] = {fabs(v.x), fabs(v.y), fabs(v.z)};
+    for (int i = 0; i < 3; i++)
+        m = c[i] > m ? c[i] : m;
+    return m;
+}
+
 /* ---- intersection ---- */
 
 /* Crossing-number test of the hit point against a (possibly non-convex) polygon, projected
@@ -743,6 +752,15 @@ int rf_tracer_intersect_at(const RfTracer *t, RfRay ray, const RfMotionState *ms
     out->prim = q.item.prim;
     out->material = q.material;
     out->point = rf_ray_at(ray, q.hit.t);
+    /* the hit point's error bound, in units of RF_RAY_OFFSET_REL (numeric.h): a few ulps of the
+     * coordinates it came from; a cone's quadratic and an instance's matrices lose more */
+    out->scale = max_abs3(out->point);
+    double so = max_abs3(ray.origin);
+    out->scale = so > out->scale ? so : out->scale;
+    if (s->prims[q.item.prim].type == RF_PRIM_CONE)
+        out->scale *= RF_RAY_OFFSET_CONE;
+    if (q.instanced)
+        out->scale *= RF_RAY_OFFSET_INSTANCE;
     out->front = rf_vec3_dot(ray.dir, q.hit.normal) < 0.0;
     out->normal = out->front ? q.hit.normal : rf_vec3_neg(q.hit.normal);
     out->shading_normal = out->normal;
@@ -763,14 +781,14 @@ int rf_tracer_intersect_at(const RfTracer *t, RfRay ray, const RfMotionState *ms
 
 /* ---- the self-intersection policy ---- */
 
+
 /* A point moved off the surface to the side the new ray leaves by (DESIGN.md numeric policy:
  * RF_RAY_OFFSET_REL, numeric.h), so that the new ray does not hit its own surface again. The
  * scale is max(1, |p|inf), a NaN coordinate ignored (as fmax does, without its library call). */
-RfVec3 rf_ray_offset_origin(RfVec3 p, RfVec3 n, RfVec3 dir, double fixed_offset)
+RfVec3 rf_hit_offset_origin(const RfSurfaceHit *h, RfVec3 dir, double fixed_offset)
 {
-    double scale = 1.0, c[3] = {fabs(p.x), fabs(p.y), fabs(p.z)};
-    for (int i = 0; i < 3; i++)
-        scale = c[i] > scale ? c[i] : scale;
-    double eps = fixed_offset > 0.0 ? fixed_offset : RF_RAY_OFFSET_REL * scale;
-    return rf_vec3_add(p, rf_vec3_scale(n, rf_vec3_dot(dir, n) >= 0.0 ? eps : -eps));
+    /* a floor far below any coordinate a scene has keeps a hit at the origin off its surface */
+    double eps = fixed_offset > 0.0 ? fixed_offset : RF_RAY_OFFSET_REL * (h->scale > 0x1p-900 ? h->scale : 0x1p-900);
+    return rf_vec3_add(h->point, rf_vec3_scale(h->normal, rf_vec3_dot(dir, h->normal) >= 0.0 ? eps : -eps));
 }
+
