@@ -9,6 +9,7 @@
 #   make bench      run times of the tracer on the canonical scenes (tools/bench.sh)
 #   make report     tracer vs. OpenGL rasterizer on every scene: report/index.html (docs/compare.md)
 #   make stress     the CGAL verifier over every ray class and scene (docs/verify.md)
+#   make mutate     plants realistic bugs one at a time: which do the tests miss? (tools/mutate.sh)
 #   make install PREFIX=/usr/local
 #   make clean
 #   Options: BUILD=dir (default build), SAN=1 (AddressSanitizer + UBSan), OPT="-O2 -g",
@@ -63,7 +64,7 @@ TEST := $(BUILD)/refray-tests
 RASTER := $(BUILD)/refray-raster
 VERIFY := $(BUILD)/refray-verify
 
-.PHONY: all test demo bench bench-run install clean report stress FORCE
+.PHONY: all test demo bench bench-run install clean report stress mutate FORCE
 all: $(LIB) $(BIN) $(RASTER) $(VERIFY)
 
 # Dependencies: checked (and installed) once per build folder, then the flags are cached.
@@ -139,7 +140,7 @@ test: $(TEST) $(BIN) $(RASTER) $(VERIFY)
 # measurements, the optics sweep, the stress renders and the SPD scenes, one table; non-zero
 # exit on a real disagreement. CI size by default; the full size is STRESS_RAYS=10000000.
 STRESS_RAYS ?= 150000
-STRESS_SCENES ?= $(wildcard scenes/spd/*.nff) scenes/whitted.rf
+STRESS_SCENES ?= $(wildcard scenes/spd/*.nff) scenes/spd/gears.nff.gz scenes/whitted.rf scenes/instances.rf scenes/mesh.rf
 stress: $(VERIFY)
 	$(VERIFY) --stress --rays $(STRESS_RAYS) --jobs 2 $(STRESS_SCENES)
 
@@ -160,6 +161,11 @@ bench:
 	@$(MAKE) --no-print-directory bench-run
 bench-run: $(BIN) $(MESHBENCH) $(MAKEMESH)
 	@sh tools/bench.sh $(BIN) $(MESHBENCH) $(MAKEMESH)
+
+# plants one realistic bug at a time in a copy of the sources and reports which ones the tests
+# miss (tools/mutate.sh; about a minute per bug)
+mutate: $(BIN) $(TEST)
+	@sh tools/mutate.sh
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/refray

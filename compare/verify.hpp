@@ -111,8 +111,8 @@ struct Cand {
 struct LocalRay {
     LV o, d;     // the exact object-space ray (the world ray under the exact inverse of the composed
                  // to_world matrices), rounded to long double
-    L dev_o, dev_d; // bounds on |tracer's object-space origin / direction - exact| (0 in the world)
-    bool ok;     // the tracer could take the ray into this space (rf_transform_point succeeded)
+    L dev_o, dev_d; // bounds on |tracer's object-space origin / direction - exact| (0 in the world;
+                    // infinite when the tracer cannot take the ray there)
 };
 
 struct Path {

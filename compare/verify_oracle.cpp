@@ -16,6 +16,9 @@
 // inlining (a known false positive of CGAL + GCC >= 11); the code is CGAL's, not ours.
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
+// One thread per process (--jobs forks): CGAL's lazy kernel need not guard its exact values
+// with std::call_once (a futex per exact evaluation).
+#define CGAL_HAS_NO_THREADS 1
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/intersections.h>
 
@@ -92,15 +95,18 @@ FT coord(const Point &p, int k) { return k == 0 ? p.x() : k == 1 ? p.y() : p.z()
 FT coord(const Vector &p, int k) { return k == 0 ? p.x() : k == 1 ? p.y() : p.z(); }
 double coord(RfVec3 v, int k) { return k == 0 ? v.x : k == 1 ? v.y : v.z; }
 
-// A long double close to the exact value: the double nearest to it plus the double nearest to
-// the rest (~2^-106 relative; forces the exact value once).
+// A long double close to the exact value: a double within an ulp of it plus one within an ulp
+// of the rest (~2^-105 relative). The exact values are forced first: CGAL's to_double alone
+// accepts a relative error of 1e-5.
 L approx(const FT &v)
 {
+    CGAL::exact(v);
     double hi = CGAL::to_double(v);
     if (!std::isfinite(hi))
         return (L)hi;
-    double lo = CGAL::to_double(v - FT(hi));
-    return (L)hi + (L)lo;
+    FT rest = v - FT(hi);
+    CGAL::exact(rest);
+    return (L)hi + (L)CGAL::to_double(rest);
 }
 
 // The world -> object map of a path, scaled: x -> m[.][0..2] x + m[.][3] = sigma (the exact
@@ -650,7 +656,6 @@ LocalRay Oracle::local_ray(int path, RfRay world) const
         lr.o = lv(world.origin);
         lr.d = lv(world.dir);
         lr.dev_o = lr.dev_d = 0;
-        lr.ok = true;
         return lr;
     }
     const Path &P = (*paths_)[(size_t)path];
@@ -658,17 +663,17 @@ LocalRay Oracle::local_ray(int path, RfRay world) const
     approx_local(P, world, lr.o, lr.d, eo, ed);
     // what the tracer computes: each level's rounded to_object on the previous level's ray
     RfRay r = world;
-    lr.ok = true;
+    bool ok = true;
     for (int inst : P.chain) {
         const RfMat4 &T = scene_->instances[inst].to_object;
         if (rf_transform_point(T, r.origin, &r.origin) != RF_OK)
-            lr.ok = false;
+            ok = false;
         r.dir = rf_transform_direction(T, r.dir);
     }
-    lr.dev_o = len(sub(lv(r.origin), lr.o)) + eo;
-    lr.dev_d = len(sub(lv(r.dir), lr.d)) + ed;
-    if (!(lr.dev_o < HUGE_VALL && lr.dev_d < HUGE_VALL))
-        lr.ok = false;
+    lr.dev_o = ok ? len(sub(lv(r.origin), lr.o)) + eo : HUGE_VALL;
+    lr.dev_d = ok ? len(sub(lv(r.dir), lr.d)) + ed : HUGE_VALL;
+    if (!(lr.dev_o < HUGE_VALL && lr.dev_d < HUGE_VALL)) // every margin then ambiguous
+        lr.dev_o = lr.dev_d = HUGE_VALL;
     return lr;
 }
 
@@ -799,6 +804,73 @@ bool cone_misses(const RfCone &c, const ExRay &xr)
     return disc.sup() < 0; // then a c > bh^2 >= 0: a != 0, no real root
 }
 
+// A filter for triangle candidates (CGAL's own filter works on the absolute coordinates, which
+// for a small far triangle leaves most cases to the exact fall-back): the triple products
+// <d, (p_i - o) x (p_j - o)> over the edges, in interval arithmetic on the differences
+// p_i - o. Two of certainly opposite signs: the line misses (-1). All three certainly of one
+// sign: the line crosses the interior; then the sign of t = <n, p_0 - o> / <n, d> decides
+// (+1: hit, -1: behind the origin). 0: not certain.
+int tri_filter(const Item &it, const ExRay &xr)
+{
+    CGAL::Protect_FPU_rounding<true> prot;
+    auto Oa = CGAL::approx(xr.O);
+    auto Da = CGAL::approx(xr.D);
+    I s = xr.unit ? I(1) : I(CGAL::to_interval(xr.s));
+    I o[3] = {Oa.x(), Oa.y(), Oa.z()}, d[3] = {Da.x(), Da.y(), Da.z()}, v[3][3];
+    for (int k = 0; k < 3; k++) {
+        v[k][0] = s * I(it.p[k].x) - o[0];
+        v[k][1] = s * I(it.p[k].y) - o[1];
+        v[k][2] = s * I(it.p[k].z) - o[2];
+    }
+    // (p_i - o) x (p_j - o) = (p_i - o) x (p_j - p_i): the short edge keeps the products small
+    // (a ray aimed at a small far triangle makes the long form cancel)
+    int pos = 0, neg = 0;
+    for (int k = 0; k < 3; k++) {
+        const I *a = v[k];
+        I b[3];
+        for (int j = 0; j < 3; j++)
+            b[j] = s * (I(coord(it.p[(k + 1) % 3], j)) - I(coord(it.p[k], j)));
+        I w = d[0] * (a[1] * b[2] - a[2] * b[1]) + d[1] * (a[2] * b[0] - a[0] * b[2]) + d[2] * (a[0] * b[1] - a[1] * b[0]);
+        pos += w.inf() > 0;
+        neg += w.sup() < 0;
+    }
+    if (pos && neg)
+        return -1;
+    if (pos < 3 && neg < 3)
+        return 0;
+    I e1[3], e2[3];
+    for (int j = 0; j < 3; j++) {
+        e1[j] = s * (I(coord(it.p[1], j)) - I(coord(it.p[0], j)));
+        e2[j] = s * (I(coord(it.p[2], j)) - I(coord(it.p[0], j)));
+    }
+    I n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    I num = n[0] * v[0][0] + n[1] * v[0][1] + n[2] * v[0][2], den = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+    I t = num * den; // the sign of t
+    return t.inf() > 0 ? 1 : t.sup() < 0 ? -1 : 0;
+}
+
+// The value of a root for reports and tie bands, to a few ulps: from the intervals of x, D and
+// den, refined by their exact values when those are loose (CGAL's to_double would accept a
+// relative error of 1e-5; a cone's coefficients cancel).
+long double root_value(const Root &r)
+{
+    auto eval = [&]() {
+        CGAL::Protect_FPU_rounding<true> prot;
+        I t = I(CGAL::to_interval(r.x));
+        if (r.s)
+            t = t + I(r.s) * CGAL::sqrt(CGAL::max(I(CGAL::to_interval(r.D)), I(0)));
+        return t / I(CGAL::to_interval(r.den));
+    };
+    I t = eval();
+    if (!(t.sup() - t.inf() <= 0x1p-50 * std::max(std::fabs(t.inf()), std::fabs(t.sup())))) {
+        CGAL::exact(r.x);
+        CGAL::exact(r.D);
+        CGAL::exact(r.den);
+        t = eval();
+    }
+    return ((long double)t.inf() + (long double)t.sup()) / 2;
+}
+
 } // namespace
 
 ExactHit Oracle::nearest(RfRay ray, const std::vector<Cand> &cand, double tracer_t, double tol) const
@@ -848,7 +920,8 @@ ExactHit Oracle::nearest(RfRay ray, const std::vector<Cand> &cand, double tracer
         case ITEM_INSTANCE: // candidates() enters instances
             continue;
         case ITEM_TRI: {
-            if (e.degenerate)
+            int filt = e.degenerate ? -1 : tri_filter(it, xr);
+            if (filt < 0)
                 continue;
             K::Ray_3 R(O, D);
             // scaled by sigma (a point reflection too when sigma < 0: the same incidences)
@@ -859,7 +932,7 @@ ExactHit Oracle::nearest(RfRay ray, const std::vector<Cand> &cand, double tracer
                     res.coplanar = true;
                 continue;
             }
-            if (!CGAL::do_intersect(R, tri))
+            if (filt == 0 && !CGAL::do_intersect(R, tri))
                 continue;
             r.x = xr.a * (e.n * (tri[0] - O)) / den;
             front = xr.sg * sgn(den) < 0;
@@ -1008,8 +1081,7 @@ ExactHit Oracle::nearest(RfRay ray, const std::vector<Cand> &cand, double tracer
     }
     if (!res.hit)
         return res;
-    long double x = CGAL::to_double(best.x), dd = best.s ? CGAL::to_double(best.D) : 0.0;
-    res.t = (x + best.s * std::sqrt(std::max(dd, 0.0L))) / (long double)CGAL::to_double(best.den);
+    res.t = root_value(best);
     if (tol >= 0 && std::isfinite(tracer_t)) {
         if (!std::isfinite(tol))
             res.t_ok = true;
