@@ -40,17 +40,18 @@ $(FUZZ_BUILD)/obj/fuzz/%.o: fuzz/%.c
 	@echo "  CC      $<"
 	@$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -MMD -MP -c $< -o $@
 
+# the library opens files through the sandbox's checks (fuzz/sandbox.c): its fopen and gzopen
+# calls, and only its own, are renamed
 $(FUZZ_BUILD)/librefray-fuzz.a: $(FUZZ_LIB_OBJ)
 	@rm -f $@
 	@ar rcs $@ $^
+	@objcopy --redefine-sym fopen=rf_fuzz_fopen --redefine-sym gzopen=rf_fuzz_gzopen $@
 
-# the readers may open files only inside the harness's sandbox while an input runs (fuzz_main.h)
-$(FUZZ_BUILD)/fuzz-%: $(FUZZ_BUILD)/obj/fuzz/fuzz_%.o $(FUZZ_BUILD)/librefray-fuzz.a
+$(FUZZ_BUILD)/fuzz-%: $(FUZZ_BUILD)/obj/fuzz/fuzz_%.o $(FUZZ_BUILD)/obj/fuzz/sandbox.o $(FUZZ_BUILD)/librefray-fuzz.a
 	@echo "  LINK    $@"
-	@$(FUZZ_CC) -fsanitize=fuzzer $(FUZZ_SAN) -pthread -Wl,--wrap=fopen -Wl,--wrap=gzopen \
-	    -o $@ $^ $(FUZZ_PKG_LIBS) -lm
+	@$(FUZZ_CC) -fsanitize=fuzzer $(FUZZ_SAN) -pthread -o $@ $^ $(FUZZ_PKG_LIBS) -lm
 
-$(FUZZ_BUILD)/mkseeds: $(FUZZ_BUILD)/obj/fuzz/mkseeds.o $(FUZZ_BUILD)/librefray-fuzz.a
+$(FUZZ_BUILD)/mkseeds: $(FUZZ_BUILD)/obj/fuzz/mkseeds.o $(FUZZ_BUILD)/obj/fuzz/sandbox.o $(FUZZ_BUILD)/librefray-fuzz.a
 	@echo "  LINK    $@"
 	@$(FUZZ_CC) $(FUZZ_SAN) -pthread -o $@ $^ $(FUZZ_PKG_LIBS) -lm
 

@@ -8,7 +8,7 @@
 # writer and libpng's other colour types, bit depths, interlacing) and the smaller docs/img
 # pictures; formula: up to three cases per id from tests/data/formula_cases_*.jsonl, one per
 # file, and tests/data/docs/cases.jsonl whole. The kept reproducers (tests/data/fuzz/<target>/)
-# are seeds too.
+# are seeds too, once they no longer crash the target.
 set -eu
 B=${1:?usage: seed.sh BUILD_DIR}
 S=$B/seeds
@@ -54,11 +54,23 @@ for f in tests/data/formula_cases_*.jsonl; do
 done
 [ -f tests/data/docs/cases.jsonl ] && cp tests/data/docs/cases.jsonl "$S/formula/docs_cases.jsonl"
 
-# the kept reproducers: what once broke a reader stays in its corpus
+# the kept reproducers: what once broke a reader stays in its corpus, once it is fixed (libFuzzer
+# stops at a seed that still crashes); the others are listed in $S/open.txt
+: > "$S/open.txt"
+mkdir -p "$B/tmp"
 for t in nff rf obj mtl exr png formula; do
     [ -d "tests/data/fuzz/$t" ] || continue
-    for f in "tests/data/fuzz/$t"/*; do [ -f "$f" ] && cp "$f" "$S/$t/regress_$(basename "$f")"; done
+    for f in "tests/data/fuzz/$t"/*; do
+        [ -f "$f" ] || continue
+        if [ ! -x "$B/fuzz-$t" ] ||
+           TMPDIR=$B/tmp RF_FUZZ_SCENES=scenes "$B/fuzz-$t" -timeout=10 -rss_limit_mb=2048 "$f" > /dev/null 2>&1; then
+            cp "$f" "$S/$t/regress_$(basename "$f")"
+        else
+            echo "$f" >> "$S/open.txt"
+        fi
+    done
 done
+rm -rf "$B"/tmp/refray-fuzz-* # the sandboxes of the reproducers that crashed
 for t in nff rf obj mtl exr png formula; do
     n=$(ls "$S/$t" | wc -l)
     printf '%s %s\n' "$t" "$n"

@@ -4,6 +4,7 @@
  * the same primitive, t, point and normals for nearest hits and the same occlusion answers,
  * ray by ray, and the same images. */
 #include <glob.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -206,8 +207,61 @@ static void t_accel_tie_rule(void)
     }
 }
 
+
+/* Rays from far away exactly through the vertices of small triangles (o = v - 2^12 d with d of a
+ * few binary digits, so o + 2^12 d = v exactly): the ray meets the triangle's box at its corner,
+ * where the float slab distances from two axes meet. The BVH must still report the vertex hit
+ * that brute force finds: its slab test rounds toward "hit" (bvh_trace.c); without that rounding
+ * (a planted bug, tools/mutate.sh) the corner is culled. */
+static void t_accel_far_vertex_rays(void)
+{
+    uint64_t r = 12345;
+    int hits = 0, wrong = 0;
+    for (int tri = 0; tri < 60; tri++) {
+        /* one triangle per scene: its box is the BVH node's, so its vertices are box corners */
+        double v[3][3];
+        char text[1024], err[256];
+        size_t n = (size_t)snprintf(text, sizeof text, "camera eye 0 0 5 target 0 0 0 up 0 1 0 fov 40\ntriangle");
+        for (int k = 0; k < 3; k++)
+            for (int a = 0; a < 3; a++) {
+                r = r * 6364136223846793005ULL + 1442695040888963407ULL;
+                v[k][a] = (double)((r >> 33) % 1000) / 997.0 + 0.1 * tri; /* not binary fractions */
+                n += (size_t)snprintf(text + n, sizeof text - n, " %.17g", v[k][a]);
+            }
+        snprintf(text + n, sizeof text - n, "\n");
+        RfScene s;
+        RfTracer *t[KINDS];
+        if (rf_scene_read_rf("t.rf", text, strlen(text), &s, err, sizeof err) != RF_OK || make_tracers(&s, t) != RF_OK) {
+            rf_test_fail(__FILE__, __LINE__, "%s", err);
+            return;
+        }
+        for (int k = 0; k < 3; k++)
+            for (int dir = 0; dir < 64; dir++) {
+                /* every sign pattern, so that some rays only touch the box at the vertex */
+                RfVec3 d = rf_vec3((dir & 1 ? 1 : -1) * (1 + 0.25 * ((dir >> 3) & 1)),
+                                   (dir & 2 ? 1 : -1) * (1 + 0.5 * ((dir >> 4) & 1)),
+                                   (dir & 4 ? 1 : -1) * (0.75 + 0.125 * ((dir >> 5) & 1)));
+                RfVec3 vv = rf_vec3(v[k][0], v[k][1], v[k][2]);
+                RfRay ray = rf_ray(rf_vec3_sub(vv, rf_vec3_scale(d, 4096.0)), d);
+                RfSurfaceHit h[KINDS];
+                int p[KINDS];
+                for (int q = 0; q < KINDS; q++)
+                    p[q] = rf_tracer_intersect(t[q], ray, 0.0, HUGE_VAL, &h[q]);
+                hits += p[BRUTE] >= 0;
+                wrong += !same_hit(p[VECTOR], &h[VECTOR], p[BRUTE], &h[BRUTE]) ||
+                         !same_hit(p[SCALAR], &h[SCALAR], p[BRUTE], &h[BRUTE]);
+            }
+        for (int q = 0; q < KINDS; q++)
+            rf_tracer_free(t[q]);
+        rf_scene_free(&s);
+    }
+    RF_CHECK_EQ_INT(wrong, 0);
+    RF_CHECK(hits > 5000); /* the watertight test counts a vertex as a hit */
+}
+
 const RfTest rf_tests_accel[] = {
     {"accel_tie_rule", t_accel_tie_rule},
+    {"accel_far_vertex_rays", t_accel_far_vertex_rays},
     {"accel_scenes_vs_brute_force", t_accel_scenes_vs_brute_force},
     {"accel_images_identical", t_accel_images},
     RF_TEST_END,

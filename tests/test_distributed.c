@@ -10,6 +10,7 @@
 #include "refray/camera.h"
 #include "refray/render.h"
 #include "refray/scene_io.h"
+#include "refray/transform.h"
 #include "rf_test.h"
 
 static int load(const char *text, RfScene *s)
@@ -498,11 +499,39 @@ static void t_distributed_scene_errors(void)
     RF_CHECK(strstr(err, "t.rf:1:1: camera with an aperture needs 'focus'") != NULL);
 }
 
+
+/* Keyframes interpolate each number linearly between their times: a translation from x = 0 at
+ * time 0 to x = 4 at time 2 is at x = 1 at time 0.5 (and holds before and after); a rotation
+ * from 0 to 90 degrees is at 45 degrees halfway (it turns: |(1,0,0)| stays 1). */
+static void t_motion_interpolation(void)
+{
+    RfScene s;
+    if (!load("camera eye 0 0 5 target 0 0 0 up 0 1 0 fov 40\nobject o\nsphere 0 0 0 1\nend\n"
+              "instance o translate 0 0 0 at 2 translate 4 0 0\n"
+              "instance o rotate z 0 at 1 rotate z 90\n", &s))
+        return;
+    RfMat4 w, o;
+    RfMat3 n;
+    RfVec3 p;
+    static const double times[] = {-1.0, 0.0, 0.5, 1.0, 2.0, 3.0}, xs[] = {0.0, 0.0, 1.0, 2.0, 4.0, 4.0};
+    for (int k = 0; k < 6; k++) {
+        RF_CHECK_EQ_INT(rf_motion_at(&s.motions[0], times[k], &w, &o, &n), RF_OK);
+        rf_transform_point(w, rf_vec3(0, 0, 0), &p);
+        RF_CHECK_NEAR(p.x, xs[k], 0, 1e-15);
+    }
+    RF_CHECK_EQ_INT(rf_motion_at(&s.motions[1], 0.5, &w, &o, &n), RF_OK);
+    rf_transform_point(w, rf_vec3(1, 0, 0), &p);
+    RF_CHECK_NEAR(p.x, sqrt(0.5), 1e-15, 0);
+    RF_CHECK_NEAR(p.y, sqrt(0.5), 1e-15, 0);
+    rf_scene_free(&s);
+}
+
 const RfTest rf_tests_distributed[] = {
     {"distributed_rect_light_closed_form", t_rect_light_closed_form},
     {"distributed_stratified_beats_random", t_stratified_beats_random},
     {"distributed_sphere_light_to_point", t_sphere_light_to_point},
     {"distributed_aperture_zero_is_pinhole", t_aperture_zero_is_pinhole},
+    {"distributed_motion_interpolation", t_motion_interpolation},
     {"distributed_motion_equals_static_at_time", t_motion_equals_static_at_time},
     {"distributed_motion_blur_is_time_average", t_motion_blur_is_time_average},
     {"distributed_glossy_tends_to_mirror", t_glossy_tends_to_mirror},

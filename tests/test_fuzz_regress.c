@@ -1,23 +1,31 @@
 /* Fuzzing regressions (fuzz/README.md): every file under tests/data/fuzz/<target>/ goes through
  * the same code the fuzz target ran on it (rf_fuzz_run of fuzz/fuzz_common.h: the reader, then
  * validation, the tracer and a tiny render, or the image diff, or the formula front ends). The
- * reader must return a status (an error or RF_OK) and nothing may crash, hang, or (under
- * AddressSanitizer) leak or touch memory it does not own.
+ * reader must return a status (an error or RF_OK) and nothing may crash, hang or (under
+ * AddressSanitizer, as in CI) touch memory it does not own. Leaks are the fuzz targets' to find
+ * (libFuzzer checks every input): the child ends with _exit, without LeakSanitizer's check.
  *
  * Each file runs in a child process, so that a crash fails this test with the file's name and
- * the signal instead of ending the whole test run; a file still running after 30 s counts as a
- * hang. */
+ * the signal instead of ending the whole test run. The fuzz targets aim at 0.1 s an input: a file
+ * that takes more than 5 s or grows its process by more than 1 GiB fails too (a header that claims
+ * a huge image must not be believed before the data is there), and one still running after
+ * 30 s is killed as a hang. */
 #include <dirent.h>
 #include <signal.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/types.h>
+#include <time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "../fuzz/fuzz_common.h"
 #include "rf_test.h"
+
+#define RF_REGRESS_MAX_SECONDS 5
+#define RF_REGRESS_MAX_RSS_KB (1024 * 1024)
 
 static const char *const fuzz_targets[] = {"nff", "rf", "obj", "mtl", "exr", "png", "formula"};
 
@@ -95,9 +103,24 @@ static int run_isolated(const char *target, const unsigned char *data, size_t le
         return -1;
     }
     if (pid == 0) {
+        struct timespec t0, t1;
+        struct rusage ru0, ru;
         alarm(30);
+        /* the child starts with the parent's resident pages: count its growth */
+        if (getrusage(RUSAGE_SELF, &ru0) != 0)
+            ru0.ru_maxrss = 0;
+        clock_gettime(CLOCK_MONOTONIC, &t0);
         RfStatus st = rf_fuzz_run(target, data, len, sandbox);
-        exit(strcmp(rf_status_str(st), "unknown status") != 0 ? 0 : 3);
+        clock_gettime(CLOCK_MONOTONIC, &t1);
+        /* _exit: the parent's atexit handlers and library destructors (OSMesa's, after the
+         * comparator tests) are not the child's to run */
+        if (strcmp(rf_status_str(st), "unknown status") == 0)
+            _exit(3);
+        if ((double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec) > RF_REGRESS_MAX_SECONDS)
+            _exit(4);
+        if (getrusage(RUSAGE_SELF, &ru) == 0 && ru.ru_maxrss - ru0.ru_maxrss > RF_REGRESS_MAX_RSS_KB)
+            _exit(5);
+        _exit(0);
     }
     int status = 0;
     if (waitpid(pid, &status, 0) != pid) {
@@ -106,10 +129,14 @@ static int run_isolated(const char *target, const unsigned char *data, size_t le
     }
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
         return 0;
-    if (WIFEXITED(status))
-        snprintf(why, whysz, WEXITSTATUS(status) == 3 ? "the reader returned an unknown status"
-                                                      : "exit code %d (a sanitizer report above?)",
-                 WEXITSTATUS(status));
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 3)
+        snprintf(why, whysz, "the reader returned an unknown status");
+    else if (WIFEXITED(status) && WEXITSTATUS(status) == 4)
+        snprintf(why, whysz, "too slow: more than %d s", RF_REGRESS_MAX_SECONDS);
+    else if (WIFEXITED(status) && WEXITSTATUS(status) == 5)
+        snprintf(why, whysz, "too much memory: the process grew by more than %d MiB", RF_REGRESS_MAX_RSS_KB / 1024);
+    else if (WIFEXITED(status))
+        snprintf(why, whysz, "exit code %d (a sanitizer report above?)", WEXITSTATUS(status));
     else if (WIFSIGNALED(status))
         snprintf(why, whysz, "%s (signal %d)", WTERMSIG(status) == SIGALRM ? "hang: still running after 30 s"
                                                                          : "crashed",

@@ -355,8 +355,11 @@ static exr_result_t read_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw, i
     if (rv == EXR_ERR_SUCCESS && (lines < 1 || (size_t)lines > RF_IMAGE_MAX_PIXELS / w))
         rv = EXR_ERR_FILE_BAD_HEADER;
     if (rv == EXR_ERR_SUCCESS) {
+        /* one plane per channel we keep, and one more that the channels we skip decode into: a
+         * NULL destination crashes OpenEXRCore's unpackers on chunks whose header and data
+         * disagree (found by fuzzing, tests/data/fuzz/exr/) */
         plane_size = w * (size_t)lines;
-        planes = malloc(plane_size * (size_t)nc * sizeof(float));
+        planes = malloc(plane_size * ((size_t)nc + 1) * sizeof(float));
         if (!planes)
             rv = EXR_ERR_OUT_OF_MEMORY;
     }
@@ -368,7 +371,9 @@ static exr_result_t read_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw, i
         if (rv != EXR_ERR_SUCCESS)
             break;
         if (ci.start_y < dw->min.y || ci.height < 1 || ci.height > lines || ci.width != img->width ||
-            (int64_t)ci.start_y + ci.height - 1 > dw->max.y) {
+            (int64_t)ci.start_y + ci.height - 1 > dw->max.y ||
+            /* an uncompressed chunk holds exactly its pixels */
+            (ci.compression == EXR_COMPRESSION_NONE && ci.packed_size != ci.unpacked_size)) {
             rv = EXR_ERR_CORRUPT_CHUNK;
             break;
         }
@@ -383,10 +388,8 @@ static exr_result_t read_pixels(exr_context_t ctx, const exr_attr_box2i_t *dw, i
         for (i = 0; i < dec.channel_count; i++) {
             exr_coding_channel_info_t *ch = &dec.channels[i];
             c = read_slot(ch->channel_name, y_only, nc);
-            if (c < 0) {
-                ch->decode_to_ptr = NULL;
-                continue;
-            }
+            if (c < 0)
+                c = nc; /* the scratch plane */
             ch->user_bytes_per_element = (int16_t)sizeof(float);
             ch->user_data_type = EXR_PIXEL_FLOAT;
             ch->user_pixel_stride = (int32_t)sizeof(float);
@@ -498,6 +501,19 @@ RfStatus rf_exr_read(const char *path, RfImage *img, char *err, size_t err_size)
 
     w = (int64_t)dw.max.x - dw.min.x + 1;
     h = (int64_t)dw.max.y - dw.min.y + 1;
+    {
+        /* no compression EXR has packs more than ~1000 floats into a byte (zlib's limit is about
+         * 1032:1): a header that claims far more pixels than the file can hold is refused before
+         * its image is allocated (a 263-byte file asked for 2 GiB; found by fuzzing) */
+        struct stat sb;
+        double claimed = (double)(w > 0 ? w : 0) * (double)(h > 0 ? h : 0) * (double)nc * sizeof(float);
+        if (fstat(io.fd, &sb) == 0 && claimed > 4096.0 * (double)sb.st_size + 64.0 * 1048576.0) {
+            st = rf_io_fail(RF_ERR_PARSE, err, err_size, path,
+                            "EXR claims %lldx%lld pixels, far more than its %lld bytes can hold", (long long)w,
+                            (long long)h, (long long)sb.st_size);
+            goto done;
+        }
+    }
     if (w <= 0 || h <= 0 || w > INT32_MAX || h > INT32_MAX ||
         rf_image_alloc(img, (int)w, (int)h, nc) == RF_ERR_DOMAIN) {
         st = rf_io_fail(RF_ERR_PARSE, err, err_size, path, "unsupported EXR data window %lldx%lld", (long long)w,
