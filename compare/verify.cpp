@@ -1882,6 +1882,16 @@ bool load_world(const char *path, World &w, std::string *err)
         *err = msg;
         return false;
     }
+    // the exact oracle expands every placement: a graph with more paths than it can hold (a DAG
+    // of groups placing their child twice has 2^levels) is refused before the expansion
+    RfTriangleCount tc = rf_scene_triangle_count(&w.sc);
+    if (tc.instances_rendered > 1000000) {
+        snprintf(msg, sizeof msg,
+                 "%s: the scene graph expands to %zu placements, more than the exact oracle holds (1000000); scene refused",
+                 path, tc.instances_rendered);
+        *err = msg;
+        return false;
+    }
     w.prim_mesh.assign(w.sc.prim_count, -1);
     rf_scene_bounds(&w.sc, &w.bounds.lo, &w.bounds.hi);
     try {

@@ -19,7 +19,7 @@
 #define CAM "camera eye 0 0 5 target 0 0 0 up 0 1 0 fov 40\nresolution 16 16\n"
 
 static char dir[] = "/tmp/refray-robust-XXXXXX";
-static char bin[PATH_MAX], raster[PATH_MAX], data[PATH_MAX];
+static char bin[PATH_MAX], raster[PATH_MAX], verify[PATH_MAX], data[PATH_MAX];
 
 static void put(const char *name, const char *text)
 {
@@ -57,7 +57,7 @@ static int exists(const char *name)
 }
 
 typedef struct {
-    const char *what, *cmd; /* $R: refray, $X: refray-raster, $D: tests/data/robust */
+    const char *what, *cmd; /* $R: refray, $X: refray-raster, $V: refray-verify, $D: tests/data/robust */
     int exit_code;          /* expected; -1: any non-zero */
     const char *message;    /* in the output (stdout and stderr) */
 } Case;
@@ -67,8 +67,8 @@ static void run_case(const Case *c)
     static char cmd[4 * PATH_MAX + 8192], expanded[3 * PATH_MAX + 4096];
     size_t n = 0;
     for (const char *p = c->cmd; *p && n + PATH_MAX + 1 < sizeof expanded; p++) {
-        if (p[0] == '$' && (p[1] == 'R' || p[1] == 'X' || p[1] == 'D')) {
-            const char *r = p[1] == 'R' ? bin : p[1] == 'X' ? raster : data;
+        if (p[0] == '$' && (p[1] == 'R' || p[1] == 'X' || p[1] == 'V' || p[1] == 'D')) {
+            const char *r = p[1] == 'R' ? bin : p[1] == 'X' ? raster : p[1] == 'V' ? verify : data;
             n += (size_t)snprintf(expanded + n, sizeof expanded - n, "%s", r);
             p++;
         } else {
@@ -93,6 +93,7 @@ static void t_bad_input_table(void)
         return;
     }
     snprintf(raster, sizeof raster, "%.*s/refray-raster", (int)(strrchr(bin, '/') - bin), bin);
+    snprintf(verify, sizeof verify, "%.*s/refray-verify", (int)(strrchr(bin, '/') - bin), bin);
     put("ok.rf", CAM "light point 0 0 5 intensity 1\nsphere 0 0 0 1\n");
     put_graph("chain.rf", 3000, 0);
     put_graph("dag.rf", 30, 1);
@@ -121,6 +122,9 @@ static void t_bad_input_table(void)
         {"a DAG of 30 doubling levels (info: once per object)", "$R info dag.rf", 0, "objects   31"},
         {"a DAG of 30 doubling levels (raster refuses to expand it)", "$X dag.rf -o a.exr", 1,
          "expands to 0 triangles in 2147483647 placements"},
+        {"a DAG of 30 doubling levels (the verifier refuses to expand it)", "$V dag.rf --rays 100", 2,
+         "expands to 2147483647 placements"},
+        {"3000 nested instances (verifier)", "$V chain.rf --rays 100", -1, "nested deeper than 64 levels"},
         {"a 4-vector for a 3-vector", "$R formula srgb-encode rgb=1,2,3,4", 1, "must be a vector of 3 finite numbers"},
         {"mesh /dev/zero", "$R info zero.rf", 1, "zero.rf:3:6: mesh '/dev/zero': not a regular file"},
         {"mtllib /dev/zero", "$R info zero.obj", 1, "material library '/dev/zero': not a regular file"},
