@@ -139,19 +139,6 @@ struct Node {
     int first, count;
 };
 
-const char *prim_name(RfPrimType t)
-{
-    switch (t) {
-    case RF_PRIM_SPHERE: return "sphere";
-    case RF_PRIM_PLANE: return "plane";
-    case RF_PRIM_TRIANGLE: return "triangle";
-    case RF_PRIM_POLYGON: return "polygon";
-    case RF_PRIM_CONE: return "cone";
-    case RF_PRIM_INSTANCE: return "instance";
-    default: return "primitive";
-    }
-}
-
 // The slab test on a box padded by 1e-9 of the magnitudes involved (plus `extra`, the error of
 // an object-space ray): the rounding of the double computation is ~1e-16 of them, so no box the
 // exact ray meets is ever culled.
@@ -252,7 +239,7 @@ namespace {
     std::string what;
     if (prim >= 0) {
         loc = s->prims[prim].loc;
-        what = std::string(prim_name(s->prims[prim].type)) + " (primitive " + std::to_string(prim) + "): ";
+        what = std::string(rf_prim_type_name(s->prims[prim].type)) + " (primitive " + std::to_string(prim) + "): ";
     }
     throw SceneError(what + msg, prim, loc);
 }

@@ -116,6 +116,21 @@ static inline int RF_KNAME(glossy)(const RfKernelJob *job, RfVec3 *dir, double g
     return out_side ? side > 0.0 : side < 0.0;
 }
 
+/* color plus the weighted colour of a mirror (refracted = 0) or refracted ray leaving the hit
+ * in dir, perturbed within the lobe cos^gloss first when gloss > 0 (§3.10). */
+static RfRgb RF_KNAME(secondary)(const RfKernelJob *job, const RfSurfaceHit *h, RfVec3 dir, RfRgb w, double wmax,
+                                 int refracted, double gloss, int depth, double weight, RfRenderStats *st,
+                                 uint64_t *shadow_cache, const RfPathSample *ps, RfRgb color)
+{
+    if (gloss > 0.0 && !RF_KNAME(glossy)(job, &dir, gloss, h->normal, !refracted, refracted, depth, ps))
+        return color;
+    RfRay ray = rf_ray(rf_hit_offset_origin(h, dir, job->fixed_offset), dir);
+    st->secondary_rays++;
+    if (ps->log)
+        rf_kernel_log(ps->log, " -> %s ray (depth %d)", refracted ? "refracted" : "mirror", depth + 1);
+    return rf_rgb_add(color, rf_rgb_mul(w, RF_KNAME(trace)(job, ray, 0.0, depth + 1, weight * wmax, st, shadow_cache, ps)));
+}
+
 /* The colour seen along ray (hits in [t_min, inf)); depth 1 is the primary ray, weight the
  * product of the reflection/transmission weights on the way here. */
 static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, int depth, double weight,
@@ -201,25 +216,12 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
     int glossy = RF_ON(RF_K_GLOSSY) && m->gloss > 0.0;
     if (mr > 0.0 && weight * mr >= job->min_contribution) {
         RfVec3 rdir = rf_reflect_dir(rf_vec3_neg(v), n);
-        if (!glossy || RF_KNAME(glossy)(job, &rdir, m->gloss, h.normal, 1, 0, depth, ps)) {
-            RfRay rr = rf_ray(rf_hit_offset_origin(&h, rdir, job->fixed_offset), rdir);
-            st->secondary_rays++;
-            if (ps->log)
-                rf_kernel_log(ps->log, " -> mirror ray (depth %d)", depth + 1);
-            color = rf_rgb_add(color, rf_rgb_mul(wr, RF_KNAME(trace)(job, rr, 0.0, depth + 1, weight * mr, st,
-                                                                     shadow_cache, ps)));
-        }
+        color = RF_KNAME(secondary)(job, &h, rdir, wr, mr, 0, glossy ? m->gloss : 0.0, depth, weight, st, shadow_cache, ps,
+                                    color);
     }
-    if (refracts && mt > 0.0 && weight * mt >= job->min_contribution) {
-        if (!glossy || RF_KNAME(glossy)(job, &tdir, m->gloss, h.normal, 0, 1, depth, ps)) {
-            RfRay tr = rf_ray(rf_hit_offset_origin(&h, tdir, job->fixed_offset), tdir);
-            st->secondary_rays++;
-            if (ps->log)
-                rf_kernel_log(ps->log, " -> refracted ray (depth %d)", depth + 1);
-            color = rf_rgb_add(color, rf_rgb_mul(wt, RF_KNAME(trace)(job, tr, 0.0, depth + 1, weight * mt, st,
-                                                                     shadow_cache, ps)));
-        }
-    }
+    if (refracts && mt > 0.0 && weight * mt >= job->min_contribution)
+        color = RF_KNAME(secondary)(job, &h, tdir, wt, mt, 1, glossy ? m->gloss : 0.0, depth, weight, st, shadow_cache, ps,
+                                    color);
     return color;
 }
 
