@@ -322,6 +322,31 @@ static void test_watertight_shared_edge(void)
 /* A closed mesh: an octahedron with jittered vertices. Rays from points near its centre in
  * random directions, and aimed exactly at its vertices and at points of its edges, must leave
  * through at least one face (reliability.md W1, scaled down). */
+/* The edge test's exact fallback: with P = (1+e, 1+2e), Q = (-1, -1-e) (e = 2^-52, sheared
+ * ray along +z from the origin, so these are the values the test sees) both products of
+ * Px Qy - Py Qx round to -(1+2e), yet the exact value is -e^2 < 0: the origin lies just to one
+ * side of PQ. Of the triangles PQR and PQR' with R = (-1, 1) and R' = (1, -1) on either side, the
+ * line therefore meets exactly the first (all three exact edge values negative; worked out in
+ * exact rationals). Taking the rounded 0 as "on the edge" would report both. */
+static void test_watertight_exact_edge_sign(void)
+{
+    const double e = 0x1p-52;
+    RfVec3 p = rf_vec3(1 + e, 1 + 2 * e, 1), q = rf_vec3(-1, -(1 + e), 1);
+    RfTriangle inside = {p, q, rf_vec3(-1, 1, 1)}, outside = {p, q, rf_vec3(1, -1, 1)};
+    RfWatertightRay w = rf_watertight_ray(rf_ray(rf_vec3(0, 0, 0), rf_vec3(0, 0, 1)));
+    RfHit h;
+    double t;
+    RF_CHECK(rf_intersect_triangle_watertight(&w, inside, 0.0, INF, &h));
+    RF_CHECK(h.t == 1.0);
+    RF_CHECK(!rf_intersect_triangle_watertight(&w, outside, 0.0, INF, &h));
+    RF_CHECK(rf_watertight_t(&w, &inside, &t) && t == 1.0);
+    RF_CHECK(!rf_watertight_t(&w, &outside, &t));
+    /* the same decisions with the vertices in the other orders (each order swaps signs exactly) */
+    RfTriangle in2 = {q, inside.p3, p}, out2 = {outside.p3, p, q};
+    RF_CHECK(rf_intersect_triangle_watertight(&w, in2, 0.0, INF, &h));
+    RF_CHECK(!rf_intersect_triangle_watertight(&w, out2, 0.0, INF, &h));
+}
+
 static void test_watertight_closed_mesh(void)
 {
     RfTestRng rng = {42};
@@ -761,6 +786,7 @@ const RfTest rf_tests_raytrace[] = {
     {"raytrace/triangle_methods_agree", test_triangle_methods_agree},
     {"raytrace/watertight_shared_edge", test_watertight_shared_edge},
     {"raytrace/watertight_closed_mesh", test_watertight_closed_mesh},
+    {"raytrace/watertight_exact_edge_sign", test_watertight_exact_edge_sign},
     {"raytrace/cone_cylinder", test_cone_cylinder},
     {"raytrace/camera", test_camera},
     {"raytrace/phong", test_phong},

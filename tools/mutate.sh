@@ -17,7 +17,7 @@ edge-fallback|src/geom/intersect.c|s/return fma(px, qy, -a) - fma(py, qx, -b);/r
 srgb-threshold|src/color/transfer.c|s/if (v <= 0.0031308)/if (v <= 0.031308)/|the sRGB curve's linear segment ends too late
 normal-transpose|src/scene/scene.c|s/in.normal_to_world = rf_mat3_transpose(lin_inv);/in.normal_to_world = lin_inv;/|normals of instances by M^-1 instead of its transpose
 tir-light|src/render/kernel_body.h|s/wr = fresnel ? rf_rgb_add(wr, wt) : rf_rgb_add(wr, kt);/wr = wr;/|total internal reflection loses the transmitted share
-slab-unwidened|src/geom/bvh_trace.c|s/float near = fi \* (1.0f - 0x1p-21f), far = fi \* (1.0f + 0x1p-21f);/float near = fi, far = fi;/|the BVH's float slab test without its outward rounding
+slab-unwidened|src/geom/bvh_trace.c|s/float near = fi \* (1.0f - 0x1p-21f), far = fi \* (1.0f + 0x1p-21f);/float near = fi, far = fi;/; s/float up = rf__widen_up(o\[a\]), down = rf__widen_down(o\[a\]);/float up = (float)o[a], down = up;/|the BVH slab test without its outward rounding of 1/d and of the origin
 phong-exponent|src/render/kernel_body.h|s/pow(rv, m->shininess)/pow(rv, m->shininess + 1.0)/|the Phong exponent off by one
 fresnel-swapped|src/render/kernel_body.h|s/fr = f.r;/fr = f.t;/|Fresnel's reflected and transmitted weights swapped
 falloff-linear|src/render/kernel_body.h|s#1.0 / (d \* d)#1.0 / d#|point lights fall off with 1/d instead of 1/d^2
