@@ -88,15 +88,9 @@ static RfVec3 newell(const RfScene *s, const RfPrimitive *p)
     return rf_vec3_normalize(n);
 }
 
-/* 2D cross product of (b - a) and (c - a) in the projection plane */
-static double cross2(const double *u, const double *v, int a, int b, int c)
-{
-    return (u[b] - u[a]) * (v[c] - v[a]) - (v[b] - v[a]) * (u[c] - u[a]);
-}
-
 int rf_raster_triangulate(const RfScene *s, const RfPrimitive *p, int *out)
 {
-    int n = p->u.poly.count, nt = 0;
+    int n = p->u.poly.count;
     if (p->type != RF_PRIM_POLYGON || !(p->flags & RF_PRIM_NONCONVEX)) {
         for (int k = 0; k + 2 < n; k++) { /* the tracer's fan: v0, v(k+1), v(k+2) */
             out[3 * k] = 0;
@@ -110,51 +104,16 @@ int rf_raster_triangulate(const RfScene *s, const RfPrimitive *p, int *out)
     RfVec3 nn = newell(s, p);
     int drop = fabs(nn.x) > fabs(nn.y) ? (fabs(nn.x) > fabs(nn.z) ? 0 : 2) : (fabs(nn.y) > fabs(nn.z) ? 1 : 2);
     double *u = malloc(sizeof *u * (size_t)n), *v = malloc(sizeof *v * (size_t)n);
-    int *idx = malloc(sizeof *idx * (size_t)n);
-    if (!u || !v || !idx) {
-        free(u), free(v), free(idx);
-        return -1;
-    }
-    double area = 0.0;
-    for (int k = 0; k < n; k++) {
-        RfVec3 q = pvert(s, p, k);
-        u[k] = drop == 0 ? q.y : q.x;
-        v[k] = drop == 2 ? q.y : q.z;
-        idx[k] = k;
-    }
-    for (int k = 0; k < n; k++)
-        area += u[k] * v[(k + 1) % n] - u[(k + 1) % n] * v[k];
-    double sgn = area >= 0.0 ? 1.0 : -1.0;
-    int m = n, guard = 0;
-    while (m > 3 && guard < 2 * m) {
-        int found = 0;
-        for (int i = 0; i < m && !found; i++) {
-            int a = idx[(i + m - 1) % m], b = idx[i], c = idx[(i + 1) % m];
-            if (sgn * cross2(u, v, a, b, c) < 0.0) /* reflex corner */
-                continue;
-            int ear = 1;
-            for (int j = 0; j < m && ear; j++) {
-                int q = idx[j];
-                if (q == a || q == b || q == c)
-                    continue;
-                /* a vertex inside or on the candidate blocks it (collinear ones too) */
-                if (sgn * cross2(u, v, a, b, q) >= 0.0 && sgn * cross2(u, v, b, c, q) >= 0.0 &&
-                    sgn * cross2(u, v, c, a, q) >= 0.0)
-                    ear = 0;
-            }
-            if (!ear)
-                continue;
-            out[3 * nt] = a, out[3 * nt + 1] = b, out[3 * nt + 2] = c, nt++;
-            memmove(idx + i, idx + i + 1, sizeof *idx * (size_t)(m - i - 1));
-            m--;
-            found = 1;
+    int nt = -1;
+    if (u && v) {
+        for (int k = 0; k < n; k++) {
+            RfVec3 q = pvert(s, p, k);
+            u[k] = drop == 0 ? q.y : q.x;
+            v[k] = drop == 2 ? q.y : q.z;
         }
-        if (!found) /* no ear (self-touching input): fan the rest rather than drop it */
-            guard = 2 * m;
+        nt = rf_triangulate_polygon_2d(u, v, n, out);
     }
-    for (int k = 1; k + 1 < m; k++)
-        out[3 * nt] = idx[0], out[3 * nt + 1] = idx[k], out[3 * nt + 2] = idx[k + 1], nt++;
-    free(u), free(v), free(idx);
+    free(u), free(v);
     return nt;
 }
 
