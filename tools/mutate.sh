@@ -33,12 +33,14 @@ EOF
 
 survived=0
 total=0
+# one snapshot of the sources (committed files as they are in the working tree) and of the
+# build, taken now: edits made while this runs do not leak into later mutations
+mkdir -p "$work/src"
+(cd "$root" && git ls-files -z | xargs -0 -I{} cp --parents {} "$work/src/") 2>/dev/null
+cp -r "$root/build" "$work/src/build" 2>/dev/null   # reuse the objects: only the mutated file rebuilds
 while IFS='|' read -r name file expr what; do
     [ -n "$filter" ] && case $name in *"$filter"*) ;; *) continue ;; esac
     total=$((total + 1))
-    rm -rf "$work/src" && mkdir -p "$work/src"
-    (cd "$root" && git ls-files -z | xargs -0 -I{} cp --parents {} "$work/src/") 2>/dev/null
-    cp -r "$root/build" "$work/src/build" 2>/dev/null   # reuse the objects: only the mutated file rebuilds
     cp "$work/src/$file" "$work/orig"
     sed -i "$expr" "$work/src/$file"
     if cmp -s "$work/orig" "$work/src/$file"; then
@@ -48,11 +50,14 @@ while IFS='|' read -r name file expr what; do
     fi
     touch "$work/src/$file"
     if ! (cd "$work/src" && make -j2 build/refray build/refray-tests build/refray-raster build/refray-verify >/dev/null 2>&1); then
-        printf "%-18s does not build                                         %s\n" "$name" "$what"
+        printf "%-18s DOES NOT BUILD (fix the expression in tools/mutate.sh)  %s\n" "$name" "$what"
+        survived=$((survived + 1))
+        cp "$work/orig" "$work/src/$file"
         continue
     fi
     (cd "$work/src" && RF_TEST_DATA=tests/data timeout 1200 build/refray-tests 2>&1) |
         sed -n 's/^FAIL \([^ ]*\) .*/\1/p' | sort -u > "$work/fails"
+    cp "$work/orig" "$work/src/$file" # back to the original (a new mtime: it rebuilds next time)
     caught=$(comm -23 "$work/fails" "$work/base_fails" | tr '\n' ' ')
     if [ -z "$caught" ]; then
         printf "%-18s SURVIVED  %s\n" "$name" "$what"
