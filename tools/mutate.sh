@@ -27,17 +27,19 @@ area-cos|src/render/kernel_body.h|s/double cos_l = -rf_vec3_dot(l->direction, ls
 motion-reversed|src/scene/scene.c|s/steps\[i\].v\[j\] = (1.0 - s) \* mo->steps\[k\]\[i\].v\[j\] + s \* mo->steps\[k + 1\]\[i\].v\[j\];/steps[i].v[j] = s * mo->steps[k][i].v[j] + (1.0 - s) * mo->steps[k + 1][i].v[j];/|keyframes interpolated backwards
 EOF
 
-# the suite as it is: a mutation is caught only by a test that passes here
-(cd "$root" && RF_TEST_DATA=tests/data timeout 1200 build/refray-tests 2>&1) | sed -n 's/^FAIL \([^ ]*\) .*/\1/p' | sort -u > "$work/base_fails"
-[ -s "$work/base_fails" ] && echo "(failing before any mutation, not counted: $(tr '\n' ' ' < "$work/base_fails"))"
-
-survived=0
-total=0
 # one snapshot of the sources (committed files as they are in the working tree) and of the
 # build, taken now: edits made while this runs do not leak into later mutations
 mkdir -p "$work/src"
 (cd "$root" && git ls-files -z | xargs -0 -I{} cp --parents {} "$work/src/") 2>/dev/null
 cp -r "$root/build" "$work/src/build" 2>/dev/null   # reuse the objects: only the mutated file rebuilds
+(cd "$work/src" && make -j2 build/refray build/refray-tests build/refray-raster build/refray-verify >/dev/null 2>&1) ||
+    { echo "the sources do not build"; exit 1; }
+# the suite as it is: a mutation is caught only by a test that passes here
+(cd "$work/src" && RF_TEST_DATA=tests/data timeout 1200 build/refray-tests 2>&1) | sed -n 's/^FAIL \([^ ]*\) .*/\1/p' | sort -u > "$work/base_fails"
+[ -s "$work/base_fails" ] && echo "(failing before any mutation, not counted: $(tr '\n' ' ' < "$work/base_fails"))"
+
+survived=0
+total=0
 while IFS='|' read -r name file expr what; do
     [ -n "$filter" ] && case $name in *"$filter"*) ;; *) continue ;; esac
     total=$((total + 1))
