@@ -103,7 +103,7 @@ $(BIN): $(call obj,$(CLI_SRC)) $(LIB)
 	@$(if $(Q),echo "  LINK    $@")
 	$(Q)$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL)
 
-$(TEST): $(call obj,$(TEST_SRC)) $(call obj,$(RASTER_LIB_SRC)) $(LIB)
+$(TEST): $(call obj,$(TEST_SRC)) $(call obj,$(RASTER_LIB_SRC)) $(BUILD)/obj/src/cli/farm.o $(LIB)
 	@$(if $(Q),echo "  LINK    $@")
 	$(Q)$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL) $(OSMESA_LIBS)
 

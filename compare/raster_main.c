@@ -111,7 +111,7 @@ int main(int argc, char **argv)
                            {"refray:renderer", "refray-raster"}, {"refray:settings", settings}};
     int rc = 0;
     RfWriteBatch *batch = rf_write_batch_new(); /* the outputs together, or none */
-    RfExrOptions eopt = {RF_EXR_ZIP, 0, batch};
+    RfExrOptions eopt = {RF_EXR_ZIP, 0, batch, 0, 0, 0, 0};
     popt.batch = batch;
     if (!batch) {
         snprintf(err, sizeof err, "out of memory");

@@ -89,7 +89,7 @@ int main(int argc, char **argv)
                 if (rf_image_alloc(&img, sz[0], sz[1], chans[c]))
                     return 1;
                 fill(&img, k % 4);
-                RfExrOptions o = {(RfExrCompression)comp, half, NULL};
+                RfExrOptions o = {(RfExrCompression)comp, half, NULL, 0, 0, 0, 0};
                 snprintf(path, sizeof path, "%s/seed_%s_%s_c%d_%dx%d.exr", argv[1], comp_name[comp],
                          half ? "half" : "float", chans[c], sz[0], sz[1]);
                 if (rf_exr_write_opts(path, &img, attrs, k % 3, o, err, sizeof err)) {

@@ -231,7 +231,7 @@ static void exr_roundtrip(TmpDir *t, int w, int h, int channels, RfExrOptions op
 static void test_exr_roundtrip_exact(void)
 {
     TmpDir t;
-    RfExrOptions zip = {RF_EXR_ZIP, 0, NULL}, none = {RF_EXR_NONE, 0, NULL}, piz = {RF_EXR_PIZ, 0, NULL};
+    RfExrOptions zip = {RF_EXR_ZIP, 0, NULL, 0, 0, 0, 0}, none = {RF_EXR_NONE, 0, NULL, 0, 0, 0, 0}, piz = {RF_EXR_PIZ, 0, NULL, 0, 0, 0, 0};
     int c;
     if (!tmp_open(&t)) {
         RF_CHECK(0);
@@ -283,7 +283,7 @@ static void test_exr_half(void)
 {
     TmpDir t;
     RfImage img, back = {0, 0, 0, NULL};
-    RfExrOptions half = {RF_EXR_ZIP, 1, NULL};
+    RfExrOptions half = {RF_EXR_ZIP, 1, NULL, 0, 0, 0, 0};
     const float exact[] = {0.0f, 0.5f, 1.0f, -2.0f, 65504.0f, 0.25f, 1024.0f, -0.125f, 3.0f};
     char err[512];
     const char *path;
@@ -316,7 +316,7 @@ static void test_exr_half(void)
     /* The stored type really is HALF: the file is smaller than the FLOAT one. */
     {
         long hs = file_size(path), fs;
-        RfExrOptions full = {RF_EXR_ZIP, 0, NULL};
+        RfExrOptions full = {RF_EXR_ZIP, 0, NULL, 0, 0, 0, 0};
         RF_CHECK_EQ_INT(rf_exr_write_opts(path, &img, NULL, 0, full, err, sizeof err), RF_OK);
         fs = file_size(path);
         RF_CHECK(hs > 0 && fs > hs);

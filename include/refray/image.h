@@ -62,7 +62,15 @@ typedef struct {
     RfExrCompression compression;
     int half; /* 0: 32-bit FLOAT channels (the default, exact); 1: 16-bit HALF (rounded) */
     RfWriteBatch *batch; /* NULL renames the file into place at once */
+    /* A crop of a larger image: the pixels' place in it (the data window starts at x0, y0) and
+     * its size (the display window); display 0 x 0: the image is the whole picture. */
+    int x0, y0, display_width, display_height;
 } RfExrOptions;
+
+/* A window of an EXR in pixels: [x0, x1) x [y0, y1). */
+typedef struct {
+    int x0, y0, x1, y1;
+} RfExrWindow;
 
 /* Output paths. A writer writes through a symbolic link (to the file it names) and refuses a
  * target that exists and is not a regular file (a device such as /dev/full, a directory, a
@@ -105,6 +113,10 @@ RfStatus rf_image_read(const char *path, RfPngOptions png_decode, RfImage *img, 
  * (PNG alpha is linear). */
 RfStatus rf_exr_read(const char *path, RfImage *img, char *err, size_t err_size);
 RfStatus rf_png_read(const char *path, RfPngOptions decode, RfImage *img, char *err, size_t err_size);
+
+/* An EXR's data window (where its pixels sit) and display window (the whole picture), either
+ * may be NULL. A crop written with RfExrOptions x0, y0 and a display size reads back as those. */
+RfStatus rf_exr_read_windows(const char *path, RfExrWindow *data, RfExrWindow *display, char *err, size_t err_size);
 
 /* A string attribute of an EXR's header: *value is malloc'd (free it). RF_ERR_DOMAIN with a
  * message when the attribute is missing or not a string. */

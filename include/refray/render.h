@@ -55,7 +55,30 @@ typedef struct {
                             needed ones (RF_ERR_DOMAIN otherwise): the same image either way */
     RfProgressFn progress; /* called after each tile (may be NULL) */
     void *progress_ctx;
+
+    /* Beyond one machine (issue 14). crop: the window rendered, [x0, x1) x [y0, y1) of the
+     * image; all 0: the whole image. img is then the window's size, and each of its pixels is
+     * the one of the whole image's render, bit for bit (the random numbers are keyed by the
+     * pixel's place in the whole image; adaptive supersampling also takes the centres one pixel
+     * around the window). */
+    RfTile crop;
+    /* Checkpoints: the (final) pass runs over tiles of RF_RENDER_TILE^2 pixels of the window,
+     * row by row (rf_render_tile_count). tile_done (may be NULL) is called after each, from the
+     * thread that rendered it (several at once: lock in it), with the image being rendered, whose
+     * tile pixels are final. skip (may be NULL): per tile, 1 = done before: its pixels are copied
+     * from resume_from (the window's size) instead of rendered. cancel (may be NULL): when it
+     * becomes non-zero (a signal handler's flag), no new tile starts and rf_render returns
+     * RF_ERR_INTERRUPTED with img freed; the tiles reported done stay valid. */
+    void (*tile_done)(void *ctx, const RfImage *img, RfTile tile);
+    void *tile_done_ctx;
+    const unsigned char *skip;
+    const RfImage *resume_from;
+    const volatile int *cancel;
 } RfRenderOptions;
+
+/* The side of a render's tiles, and their number in a w x h window. */
+#define RF_RENDER_TILE 16
+int rf_render_tile_count(int width, int height);
 
 RfRenderOptions rf_render_options_default(void);
 
@@ -149,6 +172,13 @@ int rf_tracer_occluded_cached_at(const RfTracer *tracer, RfRay ray, const RfMoti
  * (RfRenderOptions.fixed_offset, the verifier's planted bug: a scale-blind epsilon must be caught
  * by the acne measurement). */
 RfVec3 rf_hit_offset_origin(const RfSurfaceHit *h, RfVec3 dir, double fixed_offset);
+
+/* Everything besides the scene that decides a render's pixels, as one line for an image header
+ * ("640x480, 16 spp stratified, filter box 0.5, depth 8, seed 1[, local only][, adaptive ...]
+ * [, lens ...][, light samples N][, preview]"), the scene's settings resolved with the options.
+ * Two renders of one scene with equal lines give the same pixels. 0 for options rf_render
+ * would refuse. */
+int rf_render_describe(const RfScene *scene, const RfRenderOptions *opt, char *buf, size_t size);
 
 /* Renders the scene into img (allocated here, RGB float, linear). */
 RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *img, RfRenderStats *stats);

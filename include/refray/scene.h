@@ -250,6 +250,11 @@ typedef struct {
     RfMotion *motions;      /* the keyframes of moving instances */
     size_t motion_count;
 
+    /* rf_hash_bytes (hash.h) over the bytes of every file rf_scene_load read (the scene, its
+     * meshes and material libraries, decompressed, in the order read), from RF_HASH_INIT; it
+     * names the scene in a render's EXR header, so tiles of different scenes are not merged */
+    uint64_t source_hash;
+
     /* capacities of the arrays above: private to the rf_scene_add_* functions */
     size_t material_cap, light_cap, prim_cap, vertex_cap, normal_cap, object_cap, instance_cap, motion_cap;
 } RfScene;

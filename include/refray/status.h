@@ -14,7 +14,8 @@ typedef enum {
     RF_ERR_PARSE,      /* malformed input text */
     RF_ERR_IO,         /* a file could not be read or written */
     RF_ERR_NOMEM,      /* out of memory */
-    RF_ERR_NUMERIC     /* a computation gave NaN, Inf or a negative radiance */
+    RF_ERR_NUMERIC,    /* a computation gave NaN, Inf or a negative radiance */
+    RF_ERR_INTERRUPTED /* stopped on request (a signal) before the work was done */
 } RfStatus;
 
 /* A short English description of a status, e.g. "matrix is singular". */

@@ -9,6 +9,7 @@ int rf_cmd_chromaticity(int argc, char **argv); /* both in cmd_chromaticity.c */
 int rf_cmd_metamers(int argc, char **argv);
 int rf_cmd_info(int argc, char **argv);
 int rf_cmd_render(int argc, char **argv);
+int rf_cmd_merge(int argc, char **argv);
 int rf_cmd_diff(int argc, char **argv);
 int rf_cmd_bench(int argc, char **argv);
 

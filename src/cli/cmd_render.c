@@ -1,7 +1,11 @@
 /* `refray render`: a scene to a linear EXR and a display PNG. */
 #include "cli.h"
 #include "args.h"
+#include "checkpoint.h"
+#include "farm.h"
 
+#include <errno.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -51,6 +55,8 @@ static void usage(FILE *out)
             "                     [--filter box|gaussian|mitchell] [--filter-radius R]\n"
             "                     [--aperture A --focus F] [--light-samples N]\n"
             "                     [--kernel auto|general|PARTS] [--preview] [--quiet]\n"
+            "                     [--crop X0,Y0,X1,Y1 | --tiles N --tile K]\n"
+            "                     [--checkpoint FILE [--checkpoint-every S]] [--resume FILE]\n"
             "  SCENE      an .nff, .rf or .obj scene (docs/scene-format.md)\n"
             "  -o         linear OpenEXR output (float RGB, settings in the header)\n"
             "  --png      display PNG: gamma %.1f encoded (the script's §1.1.2), or --srgb\n"
@@ -68,7 +74,16 @@ static void usage(FILE *out)
             "             without it (a reference render) it fails the render, naming its pixel and path\n"
             "  --kernel   the render kernel: auto (the one compiled for what the scene needs),\n"
             "             general (every part) or a compiled one named as refray info names\n"
-            "             it (general-secondary-fresnel: without those parts); the same image\n",
+            "             it (general-secondary-fresnel: without those parts); the same image\n"
+            "  --crop     render only pixels [X0, X1) x [Y0, Y1) of the image, each bit for bit as in the\n"
+            "             whole render; the EXR keeps its place (data and display window)\n"
+            "  --tiles --tile  tile K (from 0) of N: a grid of about sqrt(N) x sqrt(N) rectangles;\n"
+            "             refray merge puts the tiles together (a job array index maps to K)\n"
+            "  --checkpoint FILE  every S seconds (default 5) write the finished tiles to FILE, a\n"
+            "             partial EXR marked as such; SIGINT or SIGTERM then stop the render with FILE\n"
+            "             written (exit 130 or 143); removed when the render completes\n"
+            "  --resume FILE  continue such a render (the same scene and settings), keeping its\n"
+            "             checkpoint in FILE; the result is the uninterrupted render's, bit for bit\n",
             2.2);
 }
 
@@ -102,7 +117,7 @@ static void show_progress(void *ctx, int done, int total)
 /* --depth-out: the comparator's silhouette mask needs the tracer's depth. One ray through each
  * pixel centre, from the hither plane as in rf_render; depth = t <dir, -w> (dir unit), the
  * distance along the view axis; +inf where nothing is hit. */
-static RfStatus primary_depth(const RfScene *scene, int width, int height, RfImage *out)
+static RfStatus primary_depth(const RfScene *scene, int width, int height, RfTile crop, RfImage *out)
 {
     RfCamera cam;
     RfTracer *tracer = NULL;
@@ -112,14 +127,15 @@ static RfStatus primary_depth(const RfScene *scene, int width, int height, RfIma
     if (st == RF_OK)
         st = rf_tracer_create(scene, &tracer);
     if (st == RF_OK)
-        st = rf_image_alloc(out, width, height, 1);
-    for (int y = 0; st == RF_OK && y < height; y++)
-        for (int x = 0; x < width; x++) {
+        st = rf_image_alloc(out, crop.x1 - crop.x0, crop.y1 - crop.y0, 1);
+    for (int y = crop.y0; st == RF_OK && y < crop.y1; y++)
+        for (int x = crop.x0; x < crop.x1; x++) {
             RfRay ray = rf_camera_ray(&cam, x + 0.5, y + 0.5, 0.0, 0.0);
             double cosw = -rf_vec3_dot(ray.dir, cam.basis.w);
             RfSurfaceHit h;
             int hit = rf_tracer_intersect(tracer, ray, sc->hither > 0.0 ? sc->hither / cosw : 0.0, HUGE_VAL, &h);
-            out->data[(size_t)y * width + x] = hit >= 0 ? (float)(h.t * cosw) : INFINITY;
+            out->data[(size_t)(y - crop.y0) * (size_t)out->width + (size_t)(x - crop.x0)] =
+                hit >= 0 ? (float)(h.t * cosw) : INFINITY;
         }
     rf_tracer_free(tracer);
     return st;
@@ -138,6 +154,9 @@ static const char *expected_value(const char *opt)
         {"--aperture", "a number >= 0"}, {"--focus", "a number > 0"},
         {"--light-samples", "an integer in [1, 65536]"}, {"--kernel", "auto, general or a name refray info prints"},
         {"--gamma", "a number in (0, 10)"}, {"--nff-fov", "centres or edges"},
+        {"--crop", "X0,Y0,X1,Y1: four integers, 0 <= X0 < X1, 0 <= Y0 < Y1"},
+        {"--tiles", "an integer in [1, 65536]"}, {"--tile", "an integer in [0, 65535]"},
+        {"--checkpoint-every", "a number of seconds >= 0"},
     };
     for (size_t i = 0; i < sizeof table / sizeof table[0]; i++)
         if (strcmp(opt, table[i].opt) == 0)
@@ -148,6 +167,9 @@ static const char *expected_value(const char *opt)
 int rf_cmd_render(int argc, char **argv)
 {
     const char *scene_path = NULL, *exr = NULL, *png = NULL, *depth_out = NULL;
+    const char *checkpoint = NULL, *resume = NULL;
+    int tiles = 0, tile = -1, have_crop = 0;
+    double checkpoint_every = 5.0;
     RfRenderOptions opt = rf_render_options_default();
     RfLoadOptions lopt = rf_load_options_default();
     RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
@@ -203,6 +225,22 @@ int rf_cmd_render(int argc, char **argv)
             ok = rf_arg_int(v, 1, 1 << 16, &opt.light_samples), i++;
         } else if (strcmp(a, "--kernel") == 0 && v) {
             ok = strcmp(v, "auto") == 0 || (opt.kernel = rf_kernel_parse(v)) != 0, i++;
+        } else if (strcmp(a, "--crop") == 0 && v) {
+            int n = -1;
+            ok = sscanf(v, "%d,%d,%d,%d%n", &opt.crop.x0, &opt.crop.y0, &opt.crop.x1, &opt.crop.y1, &n) == 4 &&
+                 n == (int)strlen(v) && opt.crop.x0 >= 0 && opt.crop.y0 >= 0 && opt.crop.x0 < opt.crop.x1 &&
+                 opt.crop.y0 < opt.crop.y1;
+            have_crop = 1, i++;
+        } else if (strcmp(a, "--tiles") == 0 && v) {
+            ok = rf_arg_int(v, 1, 65536, &tiles), i++;
+        } else if (strcmp(a, "--tile") == 0 && v) {
+            ok = rf_arg_int(v, 0, 65535, &tile), i++;
+        } else if (strcmp(a, "--checkpoint") == 0 && v) {
+            checkpoint = v, i++;
+        } else if (strcmp(a, "--checkpoint-every") == 0 && v) {
+            ok = rf_arg_nonneg(v, &checkpoint_every), i++;
+        } else if (strcmp(a, "--resume") == 0 && v) {
+            resume = v, i++;
         } else if (strcmp(a, "--preview") == 0) {
             opt.preview = 1;
         } else if (strcmp(a, "--local") == 0) {
@@ -224,11 +262,23 @@ int rf_cmd_render(int argc, char **argv)
         usage(stderr);
         return 2;
     }
+    if ((tiles > 0) != (tile >= 0) || (have_crop && tiles > 0)) {
+        fprintf(stderr, "refray render: %s\n", have_crop && tiles > 0 ? "--crop and --tiles exclude each other"
+                                                                        : "--tiles N and --tile K come together");
+        return 2;
+    }
+    if (resume && !checkpoint)
+        checkpoint = resume; /* a resumed render keeps its checkpoint where it was */
     char err[1024];
     RfScene scene;
     { /* the outputs, before any work: writable, not an input, not one another */
-        const char *outs[3] = {exr, png, depth_out}, *ins[1] = {scene_path};
-        if (rf_outputs_check(outs, 3, ins, 1, err, sizeof err) != RF_OK) {
+        const char *outs[4] = {exr, png, depth_out, checkpoint};
+        const char *ins[2] = {scene_path, resume && !rf_output_same(resume, checkpoint) ? resume : NULL};
+        if (resume && access(resume, R_OK) != 0) {
+            fprintf(stderr, "refray render: --resume %s: %s\n", resume, strerror(errno));
+            return 2;
+        }
+        if (rf_outputs_check(outs, 4, ins, ins[1] ? 2 : 1, err, sizeof err) != RF_OK) {
             fprintf(stderr, "refray render: %s\n", err);
             return 2;
         }
@@ -252,6 +302,62 @@ int rf_cmd_render(int argc, char **argv)
         }
     }
     double load_secs = seconds_since(load_start);
+    /* the window: --crop, or tile K of N */
+    int full_w = opt.width > 0 ? opt.width : scene.render.width, full_h = opt.height > 0 ? opt.height : scene.render.height;
+    if (tiles > 0 && !rf_farm_tile_rect(tiles, tile, full_w, full_h, &opt.crop, err, sizeof err)) {
+        fprintf(stderr, "refray render: %s\n", err);
+        rf_scene_free(&scene);
+        return 2;
+    }
+    int cropped = have_crop || tiles > 0;
+    if (cropped && (opt.crop.x1 > full_w || opt.crop.y1 > full_h)) {
+        fprintf(stderr, "refray render: --crop %d,%d,%d,%d is not inside the %dx%d image\n", opt.crop.x0, opt.crop.y0,
+                opt.crop.x1, opt.crop.y1, full_w, full_h);
+        rf_scene_free(&scene);
+        return 2;
+    }
+    RfTile crop = cropped ? opt.crop : (RfTile){0, 0, full_w, full_h, 0};
+    /* what the pixels are made from, for the header: tiles and checkpoints must agree on it */
+    char settings[512], hash[32], crop_s[64];
+    if (!rf_render_describe(&scene, &opt, settings, sizeof settings))
+        settings[0] = 0;
+    if (lopt.nff_fov == RF_FOV_EDGES && scene.format == RF_FORMAT_NFF)
+        strncat(settings, ", nff-fov edges", sizeof settings - strlen(settings) - 1);
+    if (lopt.crease_angle != rf_load_options_default().crease_angle) {
+        char c[64];
+        snprintf(c, sizeof c, ", crease %.17g", lopt.crease_angle);
+        strncat(settings, c, sizeof settings - strlen(settings) - 1);
+    }
+    snprintf(hash, sizeof hash, "%016llx", (unsigned long long)scene.source_hash);
+    snprintf(crop_s, sizeof crop_s, "%d,%d,%d,%d", crop.x0, crop.y0, crop.x1, crop.y1);
+    RfImageAttr identity[4] = {{rf_farm_identity[0], RF_VERSION}, {rf_farm_identity[1], hash},
+                               {rf_farm_identity[2], settings}, {"refray:crop", crop_s}};
+    RfExrOptions windows = {RF_EXR_ZIP, 0, NULL, cropped ? crop.x0 : 0, cropped ? crop.y0 : 0,
+                            cropped ? full_w : 0, cropped ? full_h : 0};
+    RfCheckpoint *ckpt = NULL;
+    RfSignalWatch *watch = NULL;
+    volatile int cancel = 0;
+    if (checkpoint) {
+        char hint[1200];
+        snprintf(hint, sizeof hint, "the same refray render command with --resume %s", checkpoint);
+        ckpt = rf_checkpoint_new(checkpoint, checkpoint_every, crop.x1 - crop.x0, crop.y1 - crop.y0, windows,
+                                 identity, 4, hint);
+        if (!ckpt) {
+            fprintf(stderr, "refray render: out of memory\n");
+            rf_scene_free(&scene);
+            return 1;
+        }
+        if (resume && !rf_checkpoint_resume(ckpt, resume, &opt.skip, &opt.resume_from, err, sizeof err)) {
+            fprintf(stderr, "refray render: --resume %s\n", err);
+            rf_checkpoint_free(ckpt);
+            rf_scene_free(&scene);
+            return 1;
+        }
+        opt.tile_done = rf_checkpoint_tile_done;
+        opt.tile_done_ctx = ckpt;
+        opt.cancel = &cancel;
+        watch = rf_signal_watch_start(&cancel); /* before rf_render starts its threads */
+    }
     Progress prog;
     prog.tty = !quiet && isatty(2);
     clock_gettime(CLOCK_MONOTONIC, &prog.start);
@@ -260,11 +366,26 @@ int rf_cmd_render(int argc, char **argv)
     RfImage img;
     RfRenderStats st;
     RfStatus rs = rf_render(&scene, &opt, &img, &st);
+    int caught = rf_signal_watch_stop(watch);
     int focus_missing = !isnan(opt.aperture) && opt.aperture > 0.0 && isnan(opt.focus) && !(scene.camera.focus > 0.0);
     double secs = seconds_since(prog.start);
     RfImage depth = {0, 0, 0, NULL};
-    RfStatus ds = rs == RF_OK && depth_out ? primary_depth(&scene, st.width, st.height, &depth) : RF_OK;
+    RfStatus ds = rs == RF_OK && depth_out ? primary_depth(&scene, st.width, st.height, crop, &depth) : RF_OK;
     rf_scene_free(&scene);
+    if (rs == RF_ERR_INTERRUPTED) {
+        int done = 0, total = 0, wrote = rf_checkpoint_write_now(ckpt, &done, &total, err, sizeof err);
+        if (wrote)
+            fprintf(stderr, "refray render: %s: interrupted by %s: %d of %d tiles done, kept in %s; the same command "
+                            "with --resume %s finishes it\n", scene_path, caught == SIGTERM ? "SIGTERM" : "SIGINT",
+                    done, total, checkpoint, checkpoint);
+        else
+            fprintf(stderr, "refray render: %s: interrupted; the checkpoint could not be written: %s\n", scene_path, err);
+        rf_checkpoint_free(ckpt);
+        return 128 + (caught ? caught : SIGINT);
+    }
+    if (ckpt && rf_checkpoint_error(ckpt)[0])
+        fprintf(stderr, "refray render: warning: a checkpoint was not written: %s\n", rf_checkpoint_error(ckpt));
+    rf_checkpoint_free(ckpt);
     if (ds != RF_OK) {
         fprintf(stderr, "refray render: %s: depth: %s\n", scene_path, rf_status_str(ds));
         rf_image_free(&img);
@@ -297,26 +418,23 @@ int rf_cmd_render(int argc, char **argv)
     }
     int rc = 0;
     RfWriteBatch *batch = rf_write_batch_new(); /* the outputs are committed together, or none */
-    RfExrOptions eopt = {RF_EXR_ZIP, 0, batch};
+    RfExrOptions eopt = windows;
+    eopt.batch = batch;
     popt.batch = batch;
     if (!batch) {
         fprintf(stderr, "refray render: out of memory\n");
         rc = 1;
     }
     if (exr && !rc) {
-        char settings[256], timing[64], threads[32], cpu[256], load_t[32], build_t[32], trace_t[32], kernel[256];
+        char timing[64], threads[32], cpu[256], load_t[32], build_t[32], trace_t[32], kernel[256];
         cpu_model(cpu, sizeof cpu);
-        snprintf(settings, sizeof settings, "%dx%d, %d spp %s, filter %s %g, depth %d%s, seed %llu", st.width,
-                 st.height, st.samples, st.adaptive ? "adaptive" : rf_sampler_name((RfSampler)st.sampler),
-                 rf_filter_name(st.filter.kind), st.filter.radius, st.max_depth,
-                 opt.local_only ? ", local only" : "", (unsigned long long)opt.seed);
         snprintf(timing, sizeof timing, "%.3f s", secs);
         snprintf(load_t, sizeof load_t, "%.3f s", load_secs);
         snprintf(build_t, sizeof build_t, "%.3f s", st.build_seconds);
         snprintf(trace_t, sizeof trace_t, "%.3f s", st.trace_seconds);
         snprintf(threads, sizeof threads, "%d", st.threads);
         RfImageAttr attrs[] = {
-            {"refray:version", RF_VERSION}, {"refray:scene", scene_path}, {"refray:settings", settings},
+            identity[0], identity[1], identity[2], identity[3], {"refray:scene", scene_path},
             {"refray:renderTime", timing}, {"refray:loadTime", load_t}, {"refray:buildTime", build_t},
             {"refray:traceTime", trace_t}, {"refray:kernel", rf_kernel_name(st.kernel, kernel, sizeof kernel)},
             {"refray:threads", threads}, {"refray:compiler", RF_COMPILER},
@@ -331,7 +449,7 @@ int rf_cmd_render(int argc, char **argv)
         fprintf(stderr, "refray render: %s\n", err);
         rc = 1;
     }
-    if (depth_out && !rc && rf_exr_write_opts(depth_out, &depth, NULL, 0, eopt, err, sizeof err) != RF_OK) {
+    if (depth_out && !rc && rf_exr_write_opts(depth_out, &depth, identity, 4, eopt, err, sizeof err) != RF_OK) {
         fprintf(stderr, "refray render: %s\n", err);
         rc = 1;
     }
@@ -342,6 +460,8 @@ int rf_cmd_render(int argc, char **argv)
     } else if (rf_write_batch_commit(batch, err, sizeof err) != RF_OK) {
         fprintf(stderr, "refray render: %s\n", err);
         rc = 1;
+    } else if (checkpoint && unlink(checkpoint) != 0 && errno != ENOENT) {
+        fprintf(stderr, "refray render: warning: cannot remove the checkpoint %s: %s\n", checkpoint, strerror(errno));
     }
     rf_image_free(&depth);
     rf_image_free(&img);

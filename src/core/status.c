@@ -11,6 +11,7 @@ const char *rf_status_str(RfStatus status)
     case RF_ERR_IO: return "input/output error";
     case RF_ERR_NOMEM: return "out of memory";
     case RF_ERR_NUMERIC: return "a computation gave NaN, Inf or a negative value";
+    case RF_ERR_INTERRUPTED: return "interrupted";
     }
     return "unknown status";
 }

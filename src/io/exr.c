@@ -138,7 +138,7 @@ static int channel_slot(const char *name, int channels)
     return -1;
 }
 
-static exr_result_t write_pixels(exr_context_t ctx, int part, const RfImage *img)
+static exr_result_t write_pixels(exr_context_t ctx, int part, const RfImage *img, int y0)
 {
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
     exr_result_t rv;
@@ -150,7 +150,7 @@ static exr_result_t write_pixels(exr_context_t ctx, int part, const RfImage *img
     for (y = 0; rv == EXR_ERR_SUCCESS && y < img->height; y += lines) {
         exr_chunk_info_t ci;
         int i;
-        rv = exr_write_scanline_chunk_info(ctx, part, y, &ci);
+        rv = exr_write_scanline_chunk_info(ctx, part, y0 + y, &ci); /* chunks start at the data window */
         if (rv != EXR_ERR_SUCCESS)
             break;
         if (inited)
@@ -173,7 +173,7 @@ static exr_result_t write_pixels(exr_context_t ctx, int part, const RfImage *img
             ch->user_pixel_stride = (int32_t)(nc * sizeof(float));
             ch->user_line_stride = (int32_t)((size_t)img->width * (size_t)nc * sizeof(float));
             ch->encode_from_ptr =
-                (const uint8_t *)(img->data + ((size_t)(ci.start_y) * (size_t)img->width) * (size_t)nc + (size_t)c);
+                (const uint8_t *)(img->data + ((size_t)(ci.start_y - y0) * (size_t)img->width) * (size_t)nc + (size_t)c);
         }
         if (rv != EXR_ERR_SUCCESS)
             break;
@@ -196,7 +196,7 @@ static exr_result_t write_pixels(exr_context_t ctx, int part, const RfImage *img
 RfStatus rf_exr_write(const char *path, const RfImage *img, const RfImageAttr *attrs, int nattrs, char *err,
                       size_t err_size)
 {
-    RfExrOptions opt = {RF_EXR_ZIP, 0, NULL};
+    RfExrOptions opt = {RF_EXR_ZIP, 0, NULL, 0, 0, 0, 0};
     return rf_exr_write_opts(path, img, attrs, nattrs, opt, err, err_size);
 }
 
@@ -226,6 +226,12 @@ RfStatus rf_exr_write_opts(const char *path, const RfImage *img, const RfImageAt
         return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "image too wide for EXR (%d pixels)", img->width);
     if (nattrs < 0 || (nattrs > 0 && !attrs))
         return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "bad attribute list");
+    int cropped = opt.x0 != 0 || opt.y0 != 0 || opt.display_width != 0 || opt.display_height != 0;
+    if (cropped && (opt.x0 < 0 || opt.y0 < 0 || opt.display_width <= 0 || opt.display_height <= 0 ||
+                    (int64_t)opt.x0 + img->width > opt.display_width ||
+                    (int64_t)opt.y0 + img->height > opt.display_height))
+        return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "crop %dx%d at (%d, %d) is not inside %dx%d", img->width,
+                          img->height, opt.x0, opt.y0, opt.display_width, opt.display_height);
     for (i = 0; i < nattrs; i++) {
         if (!attrs[i].name || !attrs[i].name[0] || !attrs[i].value)
             return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "attribute %d has no name or no value", i);
@@ -247,6 +253,14 @@ RfStatus rf_exr_write_opts(const char *path, const RfImage *img, const RfImageAt
         rv = exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part);
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_initialize_required_attr_simple(ctx, part, img->width, img->height, comp);
+    if (rv == EXR_ERR_SUCCESS && cropped) {
+        exr_attr_box2i_t dw, disp;
+        dw.min.x = opt.x0, dw.min.y = opt.y0, dw.max.x = opt.x0 + img->width - 1, dw.max.y = opt.y0 + img->height - 1;
+        disp.min.x = 0, disp.min.y = 0, disp.max.x = opt.display_width - 1, disp.max.y = opt.display_height - 1;
+        rv = exr_set_data_window(ctx, part, &dw);
+        if (rv == EXR_ERR_SUCCESS)
+            rv = exr_set_display_window(ctx, part, &disp);
+    }
     /* Linear-light data is "perceptually logarithmic" in EXR's terms (pLinear = 0, as the C++
      * library's default); it only matters to B44. */
     for (c = 0; rv == EXR_ERR_SUCCESS && c < img->channels; c++)
@@ -267,7 +281,7 @@ RfStatus rf_exr_write_opts(const char *path, const RfImage *img, const RfImageAt
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_write_header(ctx);
     if (rv == EXR_ERR_SUCCESS)
-        rv = write_pixels(ctx, part, img);
+        rv = write_pixels(ctx, part, img, cropped ? opt.y0 : 0);
     if (ctx) {
         exr_result_t frv = exr_finish(&ctx); /* writes the chunk offset table */
         if (rv == EXR_ERR_SUCCESS)
@@ -539,6 +553,30 @@ RfStatus rf_exr_read(const char *path, RfImage *img, char *err, size_t err_size)
 done:
     if (st != RF_OK)
         rf_image_free(img);
+    exr_close(&io, &ctx);
+    return st;
+}
+
+RfStatus rf_exr_read_windows(const char *path, RfExrWindow *data, RfExrWindow *display, char *err, size_t err_size)
+{
+    exr_context_t ctx;
+    ExrIo io;
+    exr_attr_box2i_t dw, disp;
+    RfStatus st = exr_open(path, &io, &ctx, err, err_size);
+    if (st != RF_OK)
+        return st;
+    exr_result_t rv = exr_get_data_window(ctx, 0, &dw);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_get_display_window(ctx, 0, &disp);
+    if (rv != EXR_ERR_SUCCESS)
+        st = rf_io_fail(RF_ERR_PARSE, err, err_size, path, "bad EXR header: %s", exr_msg(&io, rv));
+    else if ((int64_t)dw.max.x + 1 > INT32_MAX || (int64_t)dw.max.y + 1 > INT32_MAX ||
+             (int64_t)disp.max.x + 1 > INT32_MAX || (int64_t)disp.max.y + 1 > INT32_MAX)
+        st = rf_io_fail(RF_ERR_PARSE, err, err_size, path, "EXR window too large");
+    if (st == RF_OK && data)
+        *data = (RfExrWindow){dw.min.x, dw.min.y, dw.max.x + 1, dw.max.y + 1};
+    if (st == RF_OK && display)
+        *display = (RfExrWindow){disp.min.x, disp.min.y, disp.max.x + 1, disp.max.y + 1};
     exr_close(&io, &ctx);
     return st;
 }

@@ -92,8 +92,12 @@ typedef struct {
     int moving;                     /* some instance moves (motion blur) */
     int adaptive_depth;             /* §3.9 adaptive supersampling */
     double adaptive_threshold;
-    RfRgb *centres;                 /* adaptive: the pixel centres' values (pass 1) */
-    RfImage *img;
+    RfRgb *centres;                 /* adaptive: the pixel centres' values (pass 1), of the window
+                                       centres_x0, centres_y0, centres_w wide: the crop and one
+                                       pixel around it */
+    int centres_x0, centres_y0, centres_w;
+    RfImage *img;                   /* the crop, whose top left pixel is (img_x0, img_y0) */
+    int img_x0, img_y0;
     RfRenderStats *per_thread;      /* one per thread: no sharing on the hot path */
     uint64_t *shadow_cache;         /* per thread and light: the last occluder (rf_tracer_occluded_cached) */
     RfMotionState **motion;         /* per thread: moving instances at the sample's time (or NULL) */

@@ -310,7 +310,7 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
                 if (!job->filter_box && wsum > 0.0)
                     sum = rf_rgb_scale(wsum_c, (double)n / wsum);
             }
-            rf_kernel_store(job, st, ps.pixel, rf_rgb(sum.r / n, sum.g / n, sum.b / n));
+            rf_kernel_store(job, st, x, y, rf_rgb(sum.r / n, sum.g / n, sum.b / n));
         }
     return 0;
 }
@@ -326,7 +326,7 @@ static int RF_KNAME(adaptive_centres)(void *ctx, RfTile tile, int thread)
             RfPathSample ps = {(uint64_t)y * (uint64_t)job->width + (uint64_t)x, 0, 1, RF_SAMPLER_RANDOM,
                                job->shutter_open, job->motion ? job->motion[thread] : NULL, NULL};
             RfRgb c = RF_KNAME(camera_sample)(job, x + 0.5, y + 0.5, &ps, st, shadow_cache);
-            job->centres[ps.pixel] = c;
+            job->centres[rf_kernel_centre(job, x, y)] = c;
         }
     return 0;
 }
@@ -363,23 +363,23 @@ static int RF_KNAME(adaptive_refine)(void *ctx, RfTile tile, int thread)
     for (int y = tile.y0; y < tile.y1; y++)
         for (int x = tile.x0; x < tile.x1; x++) {
             uint64_t pixel = (uint64_t)y * (uint64_t)job->width + (uint64_t)x;
-            RfRgb c = job->centres[pixel];
+            RfRgb c = job->centres[rf_kernel_centre(job, x, y)];
             double contrast = 0.0;
             if (x > 0)
-                contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[pixel - 1]));
+                contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[rf_kernel_centre(job, x - 1, y)]));
             if (x + 1 < job->width)
-                contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[pixel + 1]));
+                contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[rf_kernel_centre(job, x + 1, y)]));
             if (y > 0)
-                contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[pixel - (uint64_t)job->width]));
+                contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[rf_kernel_centre(job, x, y - 1)]));
             if (y + 1 < job->height)
-                contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[pixel + (uint64_t)job->width]));
+                contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[rf_kernel_centre(job, x, y + 1)]));
             if (job->adaptive_depth > 0 && contrast > job->adaptive_threshold) {
                 RfPathSample ps = {pixel, 0, 1, RF_SAMPLER_RANDOM, job->shutter_open,
                                    job->motion ? job->motion[thread] : NULL, NULL};
                 c = RF_KNAME(adaptive_square)(job, x, y, 1.0, 1, c, &ps, st, shadow_cache);
                 st->adaptive_pixels++;
             }
-            rf_kernel_store(job, st, pixel, c);
+            rf_kernel_store(job, st, x, y, c);
         }
     return 0;
 }

@@ -57,10 +57,12 @@ static void rf_kernel_note_invalid(RfRenderStats *st, int width, uint64_t pixel,
     }
 }
 
-/* A pixel's value into the float image; one that overflows float is invalid too (black). */
-static void rf_kernel_store(const RfKernelJob *job, RfRenderStats *st, uint64_t pixel, RfRgb c)
+/* Pixel (x, y)'s value into the float image (the crop); one that overflows float is invalid too
+ * (black). */
+static void rf_kernel_store(const RfKernelJob *job, RfRenderStats *st, int x, int y, RfRgb c)
 {
-    float *px = job->img->data + (size_t)pixel * 3;
+    uint64_t pixel = (uint64_t)y * (uint64_t)job->width + (uint64_t)x;
+    float *px = job->img->data + ((size_t)(y - job->img_y0) * (size_t)job->img->width + (size_t)(x - job->img_x0)) * 3;
     px[0] = (float)c.r;
     px[1] = (float)c.g;
     px[2] = (float)c.b;
@@ -68,6 +70,12 @@ static void rf_kernel_store(const RfKernelJob *job, RfRenderStats *st, uint64_t 
         rf_kernel_note_invalid(st, job->width, pixel, -1, c);
         px[0] = px[1] = px[2] = 0.0f;
     }
+}
+
+/* Where pixel (x, y)'s centre value is kept (adaptive supersampling, kernel.h). */
+static inline size_t rf_kernel_centre(const RfKernelJob *job, int x, int y)
+{
+    return (size_t)(y - job->centres_y0) * (size_t)job->centres_w + (size_t)(x - job->centres_x0);
 }
 
 /* Appends to an explained path (kernel.h RfPathLog). */

@@ -169,6 +169,28 @@ unsigned rf_kernel_parse(const char *name)
     return 0;
 }
 
+int rf_render_describe(const RfScene *scene, const RfRenderOptions *opt, char *buf, size_t size)
+{
+    Resolved r;
+    if (!resolve(scene, opt, &r) || size == 0)
+        return 0;
+    int w = opt->width > 0 ? opt->width : scene->render.width, h = opt->height > 0 ? opt->height : scene->render.height;
+    size_t n = (size_t)snprintf(buf, size, "%dx%d, %d spp %s, filter %s %.17g, depth %d%s, seed %llu", w, h, r.samples,
+                                r.adaptive ? "adaptive" : rf_sampler_name(r.sampler), rf_filter_name(r.filter.kind),
+                                r.filter.radius, r.max_depth, opt->local_only ? ", local only" : "",
+                                (unsigned long long)opt->seed);
+    if (r.adaptive && n < size)
+        n += (size_t)snprintf(buf + n, size - n, ", adaptive threshold %.17g depth %d", r.adaptive_threshold,
+                              r.adaptive_depth);
+    if (r.aperture > 0.0 && n < size)
+        n += (size_t)snprintf(buf + n, size - n, ", lens aperture %.17g focus %.17g", r.aperture, r.focus);
+    if (opt->light_samples > 0 && n < size)
+        n += (size_t)snprintf(buf + n, size - n, ", light samples %d", opt->light_samples);
+    if (opt->preview && n < size)
+        n += (size_t)snprintf(buf + n, size - n, ", preview");
+    return n < size;
+}
+
 /* ---- the render ---- */
 
 static double seconds_between(struct timespec a, struct timespec b)
@@ -180,17 +202,48 @@ typedef struct {
     RfKernelJob job;
     RfTileFn tile;
     const RfRenderOptions *opt;
+    int ox, oy;     /* the pass's window in the image: its tiles are numbered from here */
+    int final_pass; /* the pass that writes the image: skip, tile_done */
 } Run;
 
-/* One tile, its time added to its thread's busy time (for the idle share). */
+int rf_render_tile_count(int width, int height)
+{
+    return ((width + RF_RENDER_TILE - 1) / RF_RENDER_TILE) * ((height + RF_RENDER_TILE - 1) / RF_RENDER_TILE);
+}
+
+static int cancelled(const RfRenderOptions *opt)
+{
+    return opt->cancel && __atomic_load_n(opt->cancel, __ATOMIC_RELAXED) != 0;
+}
+
+/* One tile of the pass's window, moved to its place in the image; its time added to its
+ * thread's busy time (for the idle share). A tile done before (opt->skip) is copied from
+ * opt->resume_from instead. */
 static int run_tile(void *ctx, RfTile tile, int thread)
 {
     Run *r = ctx;
-    struct timespec a, b;
-    clock_gettime(CLOCK_MONOTONIC, &a);
-    int rc = r->tile(&r->job, tile, thread);
-    clock_gettime(CLOCK_MONOTONIC, &b);
-    r->job.per_thread[thread].busy_seconds += seconds_between(a, b);
+    const RfRenderOptions *opt = r->opt;
+    if (cancelled(opt))
+        return 1;
+    RfTile local = tile;
+    tile.x0 += r->ox, tile.x1 += r->ox, tile.y0 += r->oy, tile.y1 += r->oy;
+    int rc = 0;
+    if (r->final_pass && opt->skip && opt->skip[tile.index]) {
+        const RfImage *from = opt->resume_from;
+        RfImage *img = r->job.img;
+        for (int y = local.y0; y < local.y1; y++)
+            memcpy(img->data + ((size_t)y * (size_t)img->width + (size_t)local.x0) * 3,
+                   from->data + ((size_t)y * (size_t)from->width + (size_t)local.x0) * 3,
+                   sizeof(float) * 3 * (size_t)(local.x1 - local.x0));
+    } else {
+        struct timespec a, b;
+        clock_gettime(CLOCK_MONOTONIC, &a);
+        rc = r->tile(&r->job, tile, thread);
+        clock_gettime(CLOCK_MONOTONIC, &b);
+        r->job.per_thread[thread].busy_seconds += seconds_between(a, b);
+    }
+    if (rc == 0 && r->final_pass && opt->tile_done)
+        opt->tile_done(opt->tile_done_ctx, r->job.img, local);
     return rc;
 }
 
@@ -214,6 +267,24 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     if (!resolve(scene, opt, &res) || job->width <= 0 || job->height <= 0 || !scene->has_camera ||
         opt->light_samples < 0 || opt->light_samples > 1 << 16)
         return RF_ERR_DOMAIN;
+    RfTile crop = opt->crop;
+    if (crop.x0 == 0 && crop.y0 == 0 && crop.x1 == 0 && crop.y1 == 0)
+        crop.x1 = job->width, crop.y1 = job->height;
+    if (crop.x0 < 0 || crop.y0 < 0 || crop.x1 > job->width || crop.y1 > job->height || crop.x0 >= crop.x1 ||
+        crop.y0 >= crop.y1)
+        return RF_ERR_DOMAIN;
+    const int crop_w = crop.x1 - crop.x0, crop_h = crop.y1 - crop.y0;
+    if (opt->skip && (!opt->resume_from || !opt->resume_from->data || opt->resume_from->width != crop_w ||
+                      opt->resume_from->height != crop_h || opt->resume_from->channels != 3))
+        return RF_ERR_DOMAIN;
+    job->img_x0 = crop.x0;
+    job->img_y0 = crop.y0;
+    /* adaptive supersampling compares each pixel's centre with its 4 neighbours' */
+    RfTile around = {crop.x0 > 0 ? crop.x0 - 1 : 0, crop.y0 > 0 ? crop.y0 - 1 : 0,
+                     crop.x1 < job->width ? crop.x1 + 1 : crop.x1, crop.y1 < job->height ? crop.y1 + 1 : crop.y1, 0};
+    job->centres_x0 = around.x0;
+    job->centres_y0 = around.y0;
+    job->centres_w = around.x1 - around.x0;
     job->samples = res.samples;
     job->max_depth = res.max_depth;
     job->sampler = res.sampler;
@@ -253,7 +324,8 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     double *row_y = malloc(sizeof *row_y * (size_t)job->height);
     job->shadow_cache = calloc((size_t)threads * (scene->light_count + 1), sizeof *job->shadow_cache);
     unsigned char *highlight = malloc(scene->material_count + 1);
-    job->centres = res.adaptive ? malloc(sizeof *job->centres * (size_t)job->width * (size_t)job->height) : NULL;
+    job->centres = res.adaptive ? malloc(sizeof *job->centres * (size_t)job->centres_w * (size_t)(around.y1 - around.y0))
+                                : NULL;
     if (!job->per_thread || !lights || !column_x || !row_y || !job->shadow_cache || !highlight ||
         (res.adaptive && !job->centres)) {
         free(job->centres);
@@ -303,7 +375,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     st = rf_tracer_create_opts(scene, &topt, &tracer);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     if (st == RF_OK)
-        st = rf_image_alloc(img, job->width, job->height, 3);
+        st = rf_image_alloc(img, crop_w, crop_h, 3);
     if (st == RF_OK && job->moving) { /* §3.10 one motion state per thread */
         job->motion = calloc((size_t)threads, sizeof *job->motion);
         for (int i = 0; job->motion && i < threads && st == RF_OK; i++)
@@ -315,13 +387,18 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
         stats->accel_bytes = rf_tracer_bytes(tracer);
         job->tracer = tracer;
         job->img = img;
-        st = rf_parallel_tiles(job->width, job->height, 16, threads, run_tile, opt->progress ? run_progress : NULL,
-                               &run);
-        if (st == RF_OK && res.adaptive) { /* §3.9 pass 2: every centre is known */
-            run.tile = kernel->adaptive_refine;
-            st = rf_parallel_tiles(job->width, job->height, 16, threads, run_tile,
+        if (res.adaptive) { /* §3.9 pass 1: the centres, of the window and one pixel around it */
+            run.ox = around.x0, run.oy = around.y0;
+            st = rf_parallel_tiles(around.x1 - around.x0, around.y1 - around.y0, RF_RENDER_TILE, threads, run_tile,
                                    opt->progress ? run_progress : NULL, &run);
+            run.tile = kernel->adaptive_refine; /* pass 2: every centre is known */
         }
+        run.ox = crop.x0, run.oy = crop.y0, run.final_pass = 1;
+        if (st == RF_OK)
+            st = rf_parallel_tiles(crop_w, crop_h, RF_RENDER_TILE, threads, run_tile,
+                                   opt->progress ? run_progress : NULL, &run);
+        if (st != RF_OK && cancelled(opt))
+            st = RF_ERR_INTERRUPTED;
     }
     clock_gettime(CLOCK_MONOTONIC, &t2);
     stats->build_seconds = seconds_between(t0, t1);
@@ -364,8 +441,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     stats->features = rf_scene_features(scene);
     stats->kernel = kernel->parts;
     /* the share of the threads' time in the tile phase spent waiting (the last tiles) */
-    int used = threads < ((job->width + 15) / 16) * ((job->height + 15) / 16) ? threads
-                                                                                  : ((job->width + 15) / 16) * ((job->height + 15) / 16);
+    int used = threads < rf_render_tile_count(crop_w, crop_h) ? threads : rf_render_tile_count(crop_w, crop_h);
     stats->idle_share = stats->trace_seconds > 0.0 ? 1.0 - busy / (used * stats->trace_seconds) : 0.0;
     if (stats->idle_share < 0.0)
         stats->idle_share = 0.0;

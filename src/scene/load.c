@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "reader.h"
+#include "refray/hash.h"
 #include "refray/scene_io.h"
 
 /* Without a known extension: NFF when the first keyword is one of NFF's. */
@@ -38,6 +39,8 @@ RfStatus rf_scene_load(const char *path, const RfLoadOptions *opt, RfScene *scen
     else
         st = nff ? rf_scene_read_nff(path, text, len, opt, scene, err, errsz)
                  : rf_scene_read_rf(path, text, len, scene, err, errsz);
+    if (st == RF_OK) /* after the files it included, which the readers hashed as they read them */
+        scene->source_hash = rf_hash_bytes(scene->source_hash, text, len);
     free(text);
     return st;
 }

@@ -23,6 +23,8 @@
 #include <string.h>
 
 #include "reader.h"
+#include "refray/hash.h"
+#include "refray/hash.h"
 #include "refray/numeric.h"
 #include "refray/scene_io.h"
 
@@ -278,6 +280,7 @@ static RfStatus read_mtllib(ObjReader *r, const RfToken *kw)
                                 rf_lex_quote(&t, q, sizeof q), msg);
         }
         RfStatus st = rf_scene_read_mtl(path, text, len, r->scene, r->lx.err, r->lx.errsz);
+        r->scene->source_hash = rf_hash_bytes(r->scene->source_hash, text, len);
         free(text);
         if (st)
             return st;
@@ -653,6 +656,7 @@ RfStatus rf__obj_load(const char *path, const RfObjPlacement *pl, RfScene *scene
     if (st)
         return st;
     st = rf__obj_read(path, text, len, pl, scene, err, errsz);
+    scene->source_hash = rf_hash_bytes(scene->source_hash, text, len);
     free(text);
     return st;
 }

@@ -5,6 +5,8 @@
  * that starts with a number continues the statement above (long polygons). Colours take one
  * number (grey) or three. Point and spot lights fall off with the squared distance (§3.7)
  * unless `falloff none` is given. Primitives are two-sided unless marked otherwise. */
+#include "refray/hash.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -732,6 +734,7 @@ static RfStatus read_mesh(RfReader *r, const RfToken *kw)
                             msg);
     }
     st = rf__obj_read(path, text, len, &pl, r->scene, lx->err, lx->errsz);
+    r->scene->source_hash = rf_hash_bytes(r->scene->source_hash, text, len);
     free(text);
     return st;
 }

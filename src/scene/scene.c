@@ -1,6 +1,7 @@
 /* refray: the scene model — allocation, the checks of every entity, and the feature analysis
  * (scene.h). */
 #include "refray/scene.h"
+#include "refray/hash.h"
 #include "reader.h"
 #include "refray/numeric.h"
 #include "refray/transform.h"
@@ -31,6 +32,7 @@ static int positive(RfRgb c) { return c.r > 0.0 || c.g > 0.0 || c.b > 0.0; }
 void rf_scene_init(RfScene *scene)
 {
     memset(scene, 0, sizeof *scene);
+    scene->source_hash = RF_HASH_INIT;
     scene->render.width = 512;
     scene->render.height = 512;
     scene->render.max_depth = 8;

@@ -1,0 +1,26 @@
+/* rf_hash_bytes (hash.h). */
+#include "refray/hash.h"
+
+#include <string.h>
+
+#include "refray/rng.h"
+
+#define FNV_PRIME 0x100000001b3ULL
+
+uint64_t rf_hash_bytes(uint64_t h, const void *data, size_t n)
+{
+    const unsigned char *p = data;
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+        uint64_t w = 0;
+        for (int k = 7; k >= 0; k--) /* little-endian on every host */
+            w = (w << 8) | p[i + (size_t)k];
+        h = (h ^ w) * FNV_PRIME;
+    }
+    uint64_t last = 0;
+    for (size_t k = n; k > i; k--)
+        last = (last << 8) | p[k - 1];
+    h = (h ^ last) * FNV_PRIME;
+    h = (h ^ (uint64_t)n) * FNV_PRIME;
+    return rf_mix64(h);
+}
