@@ -551,7 +551,7 @@ static void png_codes(TmpDir *t, const double *v, int n, RfPngOptions opt, long 
 static void test_png_codes_8bit(void)
 {
     TmpDir t;
-    const double v[] = {0.5, 0.0, 1.0, 0.0031308, 0.00313081, 0.18, -1.0, 2.0, NAN, INFINITY, 0.25};
+    const double v[] = {0.5, 0.0, 1.0, 0.0031308, 0.00313081, 0.18, -1.0, 2.0, NAN, INFINITY, 0.25, 0.02};
     long c[sizeof v / sizeof v[0]];
     RfPngOptions gamma = {RF_PNG_GAMMA, 2.2, 8, NULL}, srgb = {RF_PNG_SRGB, 0.0, 8, NULL}, asis = {RF_PNG_AS_IS, 0.0, 8, NULL};
     size_t i;
@@ -573,6 +573,10 @@ static void test_png_codes_8bit(void)
     RF_CHECK_EQ_INT(c[3], 10);  /* the linear segment's end: 12.92 * 0.0031308 * 255 = 10.31 */
     RF_CHECK_EQ_INT(c[4], 10);  /* just past it, on the power segment: continuous */
     RF_CHECK_EQ_INT(c[5], (long)floor((1.055 * pow(0.18, 1 / 2.4) - 0.055) * 255 + 0.5));
+    /* between the linear segment's end and ten times it, by hand: 0.02^(1/2.4) = e^(ln 0.02 / 2.4)
+     * = e^-1.63001 = 0.195914; 1.055 * 0.195914 - 0.055 = 0.151689; * 255 = 38.68 -> 39 (the
+     * linear segment would give 12.92 * 0.02 * 255 = 65.9 -> 66) */
+    RF_CHECK_EQ_INT(c[11], 39);
     RF_CHECK_EQ_INT(c[7], 255);
     png_codes(&t, v, (int)(sizeof v / sizeof v[0]), asis, c);
     RF_CHECK_EQ_INT(c[0], 128); /* 127.5 rounds up */

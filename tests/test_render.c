@@ -549,6 +549,41 @@ static void t_total_internal_reflection(void)
     }
 }
 
+/* Total internal reflection without Fresnel weights, a second case independent of the prism's:
+ * a glass cube [-1, 1]^3 (kr = 0.25, kt = 0.5, ior 1.5, no Fresnel). The ray enters the top at
+ * (0.5, 1, 0) at 60 deg (sin t = sin 60 / 1.5: t = 35.26 deg), meets the side x = 1 at 54.74 deg
+ * from inside (beyond the critical 41.81 deg: TIR), is reflected down to the bottom, which it
+ * meets at 35.26 deg and leaves at 60 deg, towards an emitter E = (1, 2, 3) at y = -3. With
+ * depth 4 (top 1, side 2, bottom 3, emitter 4) the pixel is
+ *   kr B (mirrored at the top, into the background B = (0.5, 1, 2))
+ *   + kt (kr + kt) kt E (TIR: the transmitted share joins the mirror ray, weight kr + kt)
+ * = 0.25 B + 0.1875 E = (0.3125, 0.625, 1.0625); the ray mirrored inside at the bottom ends at
+ * depth 4 on a glass face (no local colour). Losing the transmitted share at TIR would give
+ * 0.25 B + 0.0625 E. */
+static void t_total_internal_reflection_cube(void)
+{
+    const double s60 = sqrt(3.0) / 2.0;
+    char text[2048];
+    snprintf(text, sizeof text,
+             "camera eye %.17g %.17g 0  target 0.5 1 0  up 0 0 1  window -0.001 0.001 -0.001 0.001\n"
+             "resolution 1 1\nbackground 0.5 1 2\ndepth 4\n"
+             "material glass kr 0.25 kt 0.5 ior 1.5\n"
+             "polygon 4  -1 1 -1  -1 1 1  1 1 1  1 1 -1\n"     /* top, +y */
+             "polygon 4  -1 -1 -1  1 -1 -1  1 -1 1  -1 -1 1\n" /* bottom, -y */
+             "polygon 4  1 -1 -1  1 1 -1  1 1 1  1 -1 1\n"     /* +x */
+             "polygon 4  -1 -1 -1  -1 -1 1  -1 1 1  -1 1 -1\n" /* -x */
+             "polygon 4  -1 -1 1  1 -1 1  1 1 1  -1 1 1\n"     /* +z */
+             "polygon 4  -1 -1 -1  -1 1 -1  1 1 -1  1 -1 -1\n" /* -z */
+             "material lamp emission 1 2 3\npolygon 4  -10 -3 -10  -10 -3 10  10 -3 10  10 -3 -10\n",
+             0.5 - 5.0 * s60, 1.0 + 5.0 * 0.5);
+    RfImage img;
+    RfRenderOptions o = opts(1, 4);
+    if (!render_text(text, &o, &img, NULL))
+        return;
+    CHECK_PX(&img, 0, 0, 0.3125, 0.625, 1.0625);
+    rf_image_free(&img);
+}
+
 /* ---- the whitted scene, evaluated from its spec (SCENES.md §2) ---------------------------- */
 
 /* The value of pixel (i, j) of a W x H render of SCENES.md's `whitted` by the spec's own
@@ -1111,6 +1146,7 @@ const RfTest rf_tests_render[] = {
     {"render_depth_and_threshold", t_depth_and_threshold},
     {"render_refraction_slab", t_refraction_slab},
     {"render_total_internal_reflection", t_total_internal_reflection},
+    {"render_total_internal_reflection_cube", t_total_internal_reflection_cube},
     {"render_whitted_against_spec", t_whitted_against_spec},
     {"render_golden_images", t_golden_images},
     {"render_spd_scenes", t_spd_scenes_render},

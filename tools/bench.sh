@@ -14,6 +14,9 @@
 #     strategy, the anchors (Mitsuba 3 when pip can install it, POV-Ray) by tools/anchor_soft.py,
 #     side by side; the references are cached in scenes/bench/data/ (git-ignored); the plot goes
 #     to out/bench/soft_bench.png.
+#  7. beyond one machine: one render against the same image as 4 and 16 tiles (refray render
+#     --tiles N --tile K, one after another: the work a farm shares out plus each tile's load and
+#     build), against 4 tiles on two local job slots by GNU parallel, and the cost of the merge.
 # Usage: tools/bench.sh [refray] [refray-mesh-bench] [refray-make-mesh]; RUNS=n (default 3).
 set -e
 bin=${1:-build/refray}
@@ -210,3 +213,54 @@ fi
     --spp 1,4,16,64 --runs "$runs" --quiet --csv out/bench/soft_bench.csv --plot out/bench/soft_bench.png $anchors
 echo "reproduce: $bin bench scenes/soft.rf --ref $ref --samplers random,stratified,sobol,sobol/4,uniform,uniform/4,adaptive --spp 1,4,16,64 --runs $runs [--anchors ANCHORS.csv]"
 echo "  python3 tools/anchor_soft.py --csv ANCHORS.csv (Mitsuba 3 and POV-Ray, whole processes)"
+
+# ---- 7. tiles and merging ----------------------------------------------------------------------
+echo
+echo "== 7. beyond one machine: one render against the same image as tiles (wall times, medians of $runs)"
+# wall CMD...: the median wall time of a command, runs times
+wall() {
+    : > "$tmp/w"
+    i=0
+    while [ $i -lt "$runs" ]; do
+        s=$(date +%s.%N)
+        "$@" >/dev/null 2>&1
+        e=$(date +%s.%N)
+        awk -v s="$s" -v e="$e" "BEGIN {print e - s}" >> "$tmp/w"
+        i=$((i + 1))
+    done
+    median < "$tmp/w"
+}
+# tiles N SCENE OPTS...: every tile of N, one after another
+tiles() {
+    n=$1 scene=$2; shift 2
+    k=0
+    while [ $k -lt "$n" ]; do
+        "$bin" render "$scene" --tiles "$n" --tile $k -o "$tmp/tile_$k.exr" --quiet "$@" || return 1
+        k=$((k + 1))
+    done
+}
+merge() {
+    n=$1; k=0; list=""
+    while [ $k -lt "$n" ]; do list="$list $tmp/tile_$k.exr"; k=$((k + 1)); done
+    "$bin" merge $list -o "$tmp/merged.exr" --quiet
+}
+printf "%-36s %9s %9s %9s %9s %9s\n" "scene" "1 render" "4 tiles" "16 tiles" "4 on 2x1" "merge 16"
+farm_row() {
+    name=$1; shift
+    one=$(wall "$bin" render "$@" -o "$tmp/one.exr" --threads 2 --quiet)
+    t4=$(wall tiles 4 "$@" --threads 2)
+    t16=$(wall tiles 16 "$@" --threads 2)
+    m16=$(wall merge 16)
+    if command -v parallel >/dev/null 2>&1; then
+        p4=$(printf "%.3f" "$(wall bash -c 'seq 0 3 | parallel -q -S 2/: "$0" render "$2" --tiles 4 --tile {} -o "$1/p_{}.exr" --threads 1 --quiet "${@:3}"' "$bin" "$tmp" "$@")")
+    else
+        p4="-"
+    fi
+    printf "%-36s %9.3f %9.3f %9.3f %9s %9.3f\n" "$name" "$one" "$t4" "$t16" "$p4" "$m16"
+}
+farm_row "whitted 1280x960 16 spp" scenes/whitted.rf --width 1280 --height 960 --samples 16
+[ -f "$mesh" ] && farm_row "mesh (1.2 M triangles) 1024x768" scenes/bench/mesh.rf
+echo "columns: one render (2 threads); the 4 and 16 tiles one after another (2 threads each), the sum a farm"
+echo "  shares out; 4 tiles by GNU parallel on two job slots of 1 thread here (-S 2/:); merging 16 tiles"
+echo "reproduce: $bin render SCENE --tiles N --tile K -o tile_K.exr (K = 0..N-1); $bin merge tile_*.exr -o full.exr;"
+echo "  examples/farm/parallel-tiles.sh SCENE OUT.exr N HOSTS"

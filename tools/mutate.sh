@@ -30,8 +30,8 @@ EOF
 # one snapshot of the sources (committed files as they are in the working tree) and of the
 # build, taken now: edits made while this runs do not leak into later mutations
 mkdir -p "$work/src"
-(cd "$root" && git ls-files -z | xargs -0 -I{} cp --parents {} "$work/src/") 2>/dev/null
-cp -r "$root/build" "$work/src/build" 2>/dev/null   # reuse the objects: only the mutated file rebuilds
+(cd "$root" && git ls-files -z | xargs -0 -I{} cp -p --parents {} "$work/src/") 2>/dev/null
+cp -a "$root/build" "$work/src/build" 2>/dev/null   # times kept: make rebuilds what is stale, then only the mutated file
 (cd "$work/src" && make -j2 build/refray build/refray-tests build/refray-raster build/refray-verify >/dev/null 2>&1) ||
     { echo "the sources do not build"; exit 1; }
 # the suite as it is: a mutation is caught only by a test that passes here
