@@ -208,6 +208,38 @@ static void t_accel_tie_rule(void)
 }
 
 
+/* The watertight test's exact edge sign through the whole tracer (a second guard besides
+ * tests/test_raytrace.c): two triangles share the edge P = (1+e, 1+2e, 1), Q = (-1, -1-e, 1)
+ * (e = 2^-52), the ray from the origin along +z passes 2^-104-ish to one side of it (the rounded
+ * edge products agree, the exact ones do not). The one on the far side comes first in the file:
+ * were the edge taken as hit, both would be met at t = 1 and the tie rule would pick it. With
+ * the BVH (vector and scalar kernels) and brute force the ray meets the near-side triangle only. */
+static void t_accel_exact_edge_sign(void)
+{
+    const double e = 0x1p-52;
+    char text[1024], err[256];
+    snprintf(text, sizeof text,
+             "camera eye 0 0 -5 target 0 0 0 up 0 1 0 fov 40\n"
+             "material outside kd 1 0 0\ntriangle %.17g %.17g 1  %.17g %.17g 1  1 -1 1\n"
+             "material inside kd 0 1 0\ntriangle %.17g %.17g 1  %.17g %.17g 1  -1 1 1\n",
+             1 + e, 1 + 2 * e, -1.0, -(1 + e), 1 + e, 1 + 2 * e, -1.0, -(1 + e));
+    RfScene s;
+    RfTracer *t[KINDS];
+    if (rf_scene_read_rf("edge.rf", text, strlen(text), &s, err, sizeof err) != RF_OK || make_tracers(&s, t) != RF_OK) {
+        rf_test_fail(__FILE__, __LINE__, "%s", err);
+        return;
+    }
+    RfRay ray = rf_ray(rf_vec3(0, 0, 0), rf_vec3(0, 0, 1));
+    for (int m = 0; m < KINDS; m++) {
+        RfSurfaceHit h;
+        int p = rf_tracer_intersect(t[m], ray, 0.0, HUGE_VAL, &h);
+        RF_CHECK_EQ_INT(p, 1);
+        RF_CHECK(h.t == 1.0 && h.material == 1);
+        rf_tracer_free(t[m]);
+    }
+    rf_scene_free(&s);
+}
+
 /* Rays exactly through the vertices of small triangles (o = v - s d with d of a few binary
  * digits, so o + s d = v exactly): the ray meets the triangle's box at its corner, where the float
  * slab distances from two axes meet. The BVH must still report the vertex hit that brute force
@@ -265,6 +297,7 @@ static void t_accel_far_vertex_rays(void)
 const RfTest rf_tests_accel[] = {
     {"accel_tie_rule", t_accel_tie_rule},
     {"accel_far_vertex_rays", t_accel_far_vertex_rays},
+    {"accel_exact_edge_sign", t_accel_exact_edge_sign},
     {"accel_scenes_vs_brute_force", t_accel_scenes_vs_brute_force},
     {"accel_images_identical", t_accel_images},
     RF_TEST_END,

@@ -6,7 +6,27 @@
 #        tools/deps.sh bench   (the benchmark's anchors and tools, optional: Embree, POV-Ray, the CGAL
 #                               demo data, gnuplot for the plot, python3-numpy for the anchor script;
 #                               installed as root, else the line is printed; never fails)
+#        tools/deps.sh test    (what some tests use when present, optional: POV-Ray for the
+#                               independent full-render check, GNU parallel and Slurm's sbatch for
+#                               the farm examples, python3 for tools/nff2pov.py; as `bench`)
 set -u
+if [ "${1:-}" = test ]; then
+    m=""
+    command -v povray >/dev/null 2>&1 || m="$m povray"
+    command -v parallel >/dev/null 2>&1 || m="$m parallel"
+    command -v sbatch >/dev/null 2>&1 || m="$m slurm-client"
+    command -v python3 >/dev/null 2>&1 || m="$m python3"
+    [ -z "$m" ] && exit 0
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+        echo "refray tests: installing what some tests use:$m" >&2
+        export DEBIAN_FRONTEND=noninteractive
+        { apt-get update -qq && apt-get install -y -qq --no-install-recommends $m; } >/dev/null 2>&1 ||
+            echo "refray tests: apt-get failed; those tests skip without:$m" >&2
+    else
+        echo "refray tests: some tests skip without:$m (sudo apt-get install$m)" >&2
+    fi
+    exit 0
+fi
 BENCH_PACKAGES="libembree-dev povray libcgal-demo gnuplot-nox python3-numpy"
 
 if [ "${1:-}" = bench ]; then
