@@ -13,6 +13,7 @@
 
 #include <GL/glcorearb.h>
 
+#include "refray/geometry.h"
 #include "refray/transform.h"
 #include "shaders.h"
 
@@ -99,22 +100,7 @@ int rf_raster_triangulate(const RfScene *s, const RfPrimitive *p, int *out)
         }
         return n - 2;
     }
-    /* ear clipping in the coordinate plane that drops the normal's largest component, with the
-     * polygon's own orientation, so every ear keeps the polygon's winding (and its culling) */
-    RfVec3 nn = newell(s, p);
-    int drop = fabs(nn.x) > fabs(nn.y) ? (fabs(nn.x) > fabs(nn.z) ? 0 : 2) : (fabs(nn.y) > fabs(nn.z) ? 1 : 2);
-    double *u = malloc(sizeof *u * (size_t)n), *v = malloc(sizeof *v * (size_t)n);
-    int nt = -1;
-    if (u && v) {
-        for (int k = 0; k < n; k++) {
-            RfVec3 q = pvert(s, p, k);
-            u[k] = drop == 0 ? q.y : q.x;
-            v[k] = drop == 2 ? q.y : q.z;
-        }
-        nt = rf_triangulate_polygon_2d(u, v, n, out);
-    }
-    free(u), free(v);
-    return nt;
+    return rf_triangulate_polygon(s->vertices + p->u.poly.first, n, out);
 }
 
 /* Where the primitives being emitted sit: the world (identity), or an instance with M (object ->

@@ -31,13 +31,10 @@ RfStatus rf_raster_render(const RfScene *scene, const RfRasterOptions *opt,
                           RfGlProc (*proc)(void *ctx, const char *name), void *proc_ctx,
                           RfImage *color, RfImage *depth, char *err, size_t errsz);
 
-/* Triangulates polygon prim (a non-convex one by ear clipping, a convex one as the tracer's
- * fan) into out[3 k], the vertex indices within the polygon; returns the triangle count
- * (count - 2) or -1 when out of memory. Exposed for the tests. */
+/* Triangulates polygon prim as the tracer does (a non-convex one by ear clipping,
+ * rf_triangulate_polygon; a convex one as a fan) into out[3 k], the vertex indices within the
+ * polygon; returns the triangle count (count - 2) or -1 when out of memory. Exposed for the
+ * tests. */
 int rf_raster_triangulate(const RfScene *scene, const RfPrimitive *prim, int *out);
-/* Ear clipping of the simple polygon (u[k], v[k]), k < n (triangulate.c): n - 2 triangles into
- * out[3 k] (vertex indices, in the polygon's orientation), or -1 when out of memory. A polygon
- * that is not simple still gets n - 2 triangles (the part without ears is fanned). */
-int rf_triangulate_polygon_2d(const double *u, const double *v, int n, int *out);
 
 #endif

@@ -167,6 +167,8 @@ public:
     // Exact side of q (world items): triangle/plane/polygon: sign of <q - p1, N>; sphere:
     // sign(|q - c|^2 - r^2); cone: sign of (distance from the axis)^2 - radius^2 (0 elsewhere).
     int side(int item, RfVec3 q) const;
+    // Exact sign of <d, N> for a world triangle (its winding's normal), 0 for other items.
+    int facing(int item, RfVec3 d) const;
     // Exact: does the closed segment [a, b] meet the triangle item?
     bool segment_hits(int item, RfVec3 a, RfVec3 b) const;
 

@@ -28,6 +28,7 @@
 #include <cstdio>
 #include <functional>
 
+#include "refray/geometry.h"
 #include "refray/transform.h"
 
 namespace rv {
@@ -355,27 +356,25 @@ Oracle::Oracle(const RfScene *s)
             push(it);
             break;
         case RF_PRIM_TRIANGLE:
-        case RF_PRIM_POLYGON:
-            if (p->type == RF_PRIM_POLYGON && (p->flags & RF_PRIM_NONCONVEX)) {
-                it.kind = ITEM_POLY;
-                it.poly_first = p->u.poly.first;
-                it.poly_count = p->u.poly.count;
-                for (int k = 0; k < p->u.poly.count; k++)
-                    it.box = rf_aabb_add_point(it.box, vert(k));
-                push(it);
-                break;
-            }
+        case RF_PRIM_POLYGON: {
+            // the tracer's triangles: a convex polygon's fan, a non-convex one's ear clipping
+            // (the same rf_triangulate_polygon, tracer.c), each decided exactly
+            std::vector<int> corner(3 * (size_t)std::max(1, p->u.poly.count - 2));
+            bool cut = p->type == RF_PRIM_POLYGON && (p->flags & RF_PRIM_NONCONVEX);
+            if (cut && rf_triangulate_polygon(s->vertices + p->u.poly.first, p->u.poly.count, corner.data()) < 0)
+                refuse(s, (int)i, "could not be triangulated (out of memory)");
             for (int k = 0; k + 2 < p->u.poly.count; k++) {
                 it.kind = ITEM_TRI;
-                it.p[0] = vert(0);
-                it.p[1] = vert(k + 1);
-                it.p[2] = vert(k + 2);
+                it.p[0] = vert(cut ? corner[3 * (size_t)k] : 0);
+                it.p[1] = vert(cut ? corner[3 * (size_t)k + 1] : k + 1);
+                it.p[2] = vert(cut ? corner[3 * (size_t)k + 2] : k + 2);
                 it.box = rf_aabb_empty();
                 for (int j = 0; j < 3; j++)
                     it.box = rf_aabb_add_point(it.box, it.p[j]);
                 push(it);
             }
             break;
+        }
         case RF_PRIM_CONE: {
             it.kind = ITEM_CONE;
             it.cone = p->u.cone;
@@ -1103,6 +1102,14 @@ int Oracle::side(int item, RfVec3 q) const
     default:
         return 0;
     }
+}
+
+int Oracle::facing(int item, RfVec3 d) const
+{
+    const Item &it = items_[(size_t)item];
+    if (it.kind != ITEM_TRI || it.level != 0)
+        return 0;
+    return sgn(impl_->ex[(size_t)item].n * Vector(FT(d.x), FT(d.y), FT(d.z)));
 }
 
 bool Oracle::segment_hits(int item, RfVec3 a, RfVec3 b) const

@@ -355,95 +355,6 @@ static void test_projection_known_answer(void)
     rf_scene_free(&s);
 }
 
-/* Ear clipping on polygons that are hard for it: random star-shaped polygons (sorted angles,
- * random radii: simple by construction, about half the corners reflex), a comb with deep teeth and
- * a spiral strip, both orientations. A valid triangulation of a simple polygon has n - 2
- * triangles, none against the polygon's orientation, no vertex strictly inside any of them, and
- * areas that sum to the polygon's (shoelace formula). */
-static double tri_area2(const double *u, const double *v, const int *t)
-{
-    return (u[t[1]] - u[t[0]]) * (v[t[2]] - v[t[0]]) - (v[t[1]] - v[t[0]]) * (u[t[2]] - u[t[0]]);
-}
-
-static void check_triangulation(const double *u, const double *v, int n, const char *what)
-{
-    int *t = malloc(sizeof *t * 3 * (size_t)n);
-    int nt = rf_triangulate_polygon_2d(u, v, n, t);
-    double area2 = 0.0, sum = 0.0;
-    for (int k = 0; k < n; k++)
-        area2 += u[k] * v[(k + 1) % n] - u[(k + 1) % n] * v[k];
-    int bad_orientation = 0, inside = 0;
-    for (int k = 0; k < nt; k++) {
-        double a = tri_area2(u, v, t + 3 * k) * (area2 > 0 ? 1 : -1);
-        bad_orientation += !(a >= 0.0); /* 0: an ear of three collinear corners (combs have them) */
-        sum += a;
-        for (int q = 0; q < n && n <= 400; q++) {
-            if (q == t[3 * k] || q == t[3 * k + 1] || q == t[3 * k + 2])
-                continue;
-            int e[3] = {t[3 * k], t[3 * k + 1], t[3 * k + 2]}, in = 1;
-            for (int j = 0; j < 3; j++) {
-                int w[3] = {e[j], e[(j + 1) % 3], q};
-                in &= tri_area2(u, v, w) * (area2 > 0 ? 1 : -1) > 0.0;
-            }
-            inside += in;
-        }
-    }
-    if (nt != n - 2 || bad_orientation || inside || !rf_test_near(sum, fabs(area2), 1e-9, 0))
-        rf_test_fail(__FILE__, __LINE__, "%s: %d triangles (expected %d), %d not in the polygon's orientation, "
-                     "%d vertices inside a triangle, area %.17g vs %.17g", what, nt, n - 2, bad_orientation, inside,
-                     sum, fabs(area2));
-    rf_test_checks++;
-    free(t);
-}
-
-static void test_triangulate_hard_polygons(void)
-{
-    RfTestRng rng = {2024};
-    enum { MAX = 100000 };
-    double *u = malloc(sizeof *u * MAX), *v = malloc(sizeof *v * MAX);
-    char what[64];
-    for (int trial = 0; trial < 40; trial++) {
-        int n = trial < 38 ? 5 + trial * 5 : (trial == 38 ? 20000 : MAX);
-        double *ang = malloc(sizeof *ang * (size_t)n);
-        for (int k = 0; k < n; k++)
-            ang[k] = 2 * 3.14159265358979323846 * (k + rf_test_uniform(&rng, 0.0, 0.9)) / n;
-        for (int k = 0; k < n; k++) {
-            double r = rf_test_uniform(&rng, 0.2, 1.0);
-            int kk = trial % 2 ? k : n - 1 - k; /* odd trials counter-clockwise, even clockwise */
-            u[kk] = r * cos(ang[k]);
-            v[kk] = r * sin(ang[k]);
-        }
-        free(ang);
-        snprintf(what, sizeof what, "random star %d (n = %d)", trial, n);
-        check_triangulation(u, v, n, what);
-    }
-    /* a comb: a spine along the bottom and 60 teeth 10 high, 0.5 wide, 0.5 apart */
-    int n = 0;
-    for (int k = 0; k < 60; k++) {
-        double x = k;
-        u[n] = x, v[n++] = 10, u[n] = x + 0.5, v[n++] = 10, u[n] = x + 0.5, v[n++] = 1, u[n] = x + 1, v[n++] = 1;
-    }
-    u[n] = 60, v[n++] = 0, u[n] = 0, v[n++] = 0;
-    check_triangulation(u, v, n, "comb (clockwise)");
-    for (int k = 0; k < n / 2; k++) { /* reversed: counter-clockwise */
-        double tu = u[k], tv = v[k];
-        u[k] = u[n - 1 - k], v[k] = v[n - 1 - k], u[n - 1 - k] = tu, v[n - 1 - k] = tv;
-    }
-    check_triangulation(u, v, n, "comb (counter-clockwise)");
-    /* a spiral strip: out along r = 1 + a, back along r = 1.5 + a, 3 turns */
-    n = 0;
-    for (int k = 0; k <= 150; k++) {
-        double a = 6 * 3.14159265358979323846 * k / 150;
-        u[n] = (1 + a) * cos(a), v[n++] = (1 + a) * sin(a);
-    }
-    for (int k = 150; k >= 0; k--) {
-        double a = 6 * 3.14159265358979323846 * k / 150;
-        u[n] = (1.5 + a) * cos(a), v[n++] = (1.5 + a) * sin(a);
-    }
-    check_triangulation(u, v, n, "spiral strip");
-    free(u), free(v);
-}
-
 static void test_triangulate_nonconvex(void)
 {
     /* an L: (0,0) (2,0) (2,1) (1,1) (1,2) (0,2), area 3; ear clipping gives 4 triangles with the
@@ -533,7 +444,6 @@ const RfTest rf_tests_compare[] = {
     {"compare_planted_errors", test_planted_errors},
     {"compare_projection_known_answer", test_projection_known_answer},
     {"compare_triangulate_nonconvex", test_triangulate_nonconvex},
-    {"compare_triangulate_hard_polygons", test_triangulate_hard_polygons},
     {"compare_raster_modes", test_raster_modes},
     RF_TEST_END,
 };

@@ -30,6 +30,15 @@ int rf_basis_is_orthogonal(int n, const double *const *basis, int unit);
  * orthogonal projection). RF_ERR_DEGENERATE for a triangle of zero area. */
 RfStatus rf_barycentric(RfVec3 p1, RfVec3 p2, RfVec3 p3, RfVec3 q, double l[3]);
 
+/* Ear clipping (src/geom/triangulate.c) of a simple polygon: n - 2 triangles as vertex indices
+ * out[3 k .. 3 k + 2], each in the polygon's orientation (three collinear corners may give a
+ * triangle of zero area), so that together they cover the polygon exactly once; -1 when out of
+ * memory. A polygon that is not simple still gets n - 2 triangles (the part without ears is
+ * fanned). The 2D form takes the vertices (u[k], v[k]); the 3D form works in the coordinate
+ * plane that drops the largest component of the polygon's Newell normal. */
+int rf_triangulate_polygon_2d(const double *u, const double *v, int n, int *out);
+int rf_triangulate_polygon(const RfVec3 *v, int n, int *out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,6 +1,7 @@
 /* The tracer (render.h): scene preparation, nearest-hit and occlusion queries, the
  * self-intersection policy. The shading lives in the kernels (kernel_body.h). */
 #include "refray/render.h"
+#include "refray/geometry.h"
 
 #include <float.h>
 #include <stdlib.h>
@@ -16,8 +17,9 @@
 #include "refray/shading.h"
 #include "refray/transform.h"
 
-/* One item of a level: a primitive, or one fan triangle (sub >= 0) of a convex polygon
- * (triangle v0, v(sub+1), v(sub+2)); a triangle has sub = 0. Its key orders (prim, sub): of two
+/* One item of a level: a primitive, or one triangle (sub >= 0) of a polygon (a convex one's fan
+ * triangle v0, v(sub+1), v(sub+2); a non-convex one's ear-clipped triangle sub); a triangle has
+ * sub = 0. Its key orders (prim, sub): of two
  * hits at the same t the lower key wins, so the image does not depend on the BVH (DESIGN.md). */
 typedef struct {
     int prim, sub;
@@ -49,7 +51,12 @@ struct RfTracer {
     RfTracerOptions opt;
     Level world;
     Level *objects;    /* per RfScene.objects: one BVH each, shared by all its instances */
-    RfVec3 *poly_normal; /* per primitive: unit normal of a non-convex polygon (Newell) */
+    /* Non-convex polygons are cut into triangles by ear clipping (rf_triangulate_polygon), so
+     * that they are watertight against their neighbours and inside themselves like every other
+     * triangle (the crossing-number test they had leaked rays at edges: docs/verify.md,
+     * star-prisms). Polygon prim's triangle k has the corners cut[cut_first[prim] + 3 k + j]. */
+    int *cut;
+    size_t *cut_first;
 };
 
 /* ---- preparation ---- */
@@ -66,10 +73,26 @@ static int item_is_triangle(const RfScene *s, Item it)
     return it.sub >= 0 && (ty == RF_PRIM_TRIANGLE || ty == RF_PRIM_POLYGON);
 }
 
-static RfTriangle item_triangle(const RfScene *s, Item it)
+/* The corners of a triangle item within its primitive: a triangle's 0, 1, 2; a convex polygon's
+ * fan triangle 0, sub + 1, sub + 2; a non-convex polygon's ear-clipped triangle. */
+static void item_corners(const RfTracer *t, Item it, int c[3])
 {
+    const RfPrimitive *p = &t->scene->prims[it.prim];
+    if (p->type == RF_PRIM_POLYGON && (p->flags & RF_PRIM_NONCONVEX)) {
+        const int *k = t->cut + t->cut_first[it.prim] + 3 * (size_t)it.sub;
+        c[0] = k[0], c[1] = k[1], c[2] = k[2];
+    } else {
+        c[0] = 0, c[1] = it.sub + 1, c[2] = it.sub + 2;
+    }
+}
+
+static RfTriangle item_triangle(const RfTracer *t, Item it)
+{
+    const RfScene *s = t->scene;
     const RfPrimitive *p = &s->prims[it.prim];
-    RfTriangle tri = {vertex(s, p, 0), vertex(s, p, it.sub + 1), vertex(s, p, it.sub + 2)};
+    int c[3];
+    item_corners(t, it, c);
+    RfTriangle tri = {vertex(s, p, c[0]), vertex(s, p, c[1]), vertex(s, p, c[2])};
     return tri;
 }
 
@@ -128,7 +151,8 @@ void rf_tracer_free(RfTracer *t)
     for (size_t o = 0; t->objects && o < t->scene->object_count; o++)
         level_free(&t->objects[o]);
     free(t->objects);
-    free(t->poly_normal);
+    free(t->cut);
+    free(t->cut_first);
     free(t);
 }
 
@@ -185,7 +209,7 @@ static void describe_item(void *ctx, int j, RfBvhItem *out)
     out->user = (uint32_t)p->material;
     if (item_is_triangle(s, it)) {
         out->kind = RF_BVH_TRIANGLE;
-        out->tri = item_triangle(s, it);
+        out->tri = item_triangle(d->tracer, it);
         out->user |= prim_smooth(s, p) ? USER_SMOOTH : 0u;
     } else if (p->type == RF_PRIM_SPHERE) {
         out->kind = RF_BVH_SPHERE;
@@ -213,7 +237,7 @@ static RfStatus build_level(RfTracer *t, size_t first, size_t end, int world, Le
         if (p->type == RF_PRIM_INSTANCE &&
             (st = build_object(t, scene->instances[p->u.instance].object)) != RF_OK)
             return st;
-        n_items += p->type == RF_PRIM_POLYGON && !(p->flags & RF_PRIM_NONCONVEX) ? (size_t)p->u.poly.count - 2 : 1;
+        n_items += p->type == RF_PRIM_POLYGON ? (size_t)p->u.poly.count - 2 : 1;
     }
     if (n_items > (size_t)INT32_MAX / 2 || scene->material_count > USER_MATERIAL)
         return RF_ERR_NOMEM;
@@ -246,7 +270,7 @@ static RfStatus build_level(RfTracer *t, size_t first, size_t end, int world, Le
         } else if (p->type == RF_PRIM_PLANE) {
             lv->items[lv->item_count++] = it;
             lv->unbounded[lv->unbounded_count++] = item_key(it);
-        } else if (p->type == RF_PRIM_POLYGON && !(p->flags & RF_PRIM_NONCONVEX)) {
+        } else if (p->type == RF_PRIM_POLYGON) { /* fan or ear-clipped triangles */
             lv->box = rf_aabb_union(lv->box, item_box(scene, it));
             for (int k = 0; k + 2 < p->u.poly.count; k++) {
                 it.sub = k;
@@ -256,14 +280,6 @@ static RfStatus build_level(RfTracer *t, size_t first, size_t end, int world, Le
         } else {
             if (p->type == RF_PRIM_TRIANGLE)
                 it.sub = 0;
-            if (p->type == RF_PRIM_POLYGON) { /* Newell's normal of the whole polygon */
-                RfVec3 n = rf_vec3(0, 0, 0);
-                for (int k = 0; k < p->u.poly.count; k++) {
-                    RfVec3 a = vertex(scene, p, k), b = vertex(scene, p, (k + 1) % p->u.poly.count);
-                    n = rf_vec3_add(n, rf_vec3_cross(a, b));
-                }
-                t->poly_normal[i] = rf_vec3_normalize(n);
-            }
             lv->box = rf_aabb_union(lv->box, item_box(scene, it));
             lv->bvh_items[bvh_count++] = key;
             lv->items[lv->item_count++] = it;
@@ -300,6 +316,33 @@ static RfStatus build_object(RfTracer *t, int o)
     return st;
 }
 
+/* The triangles of every non-convex polygon (struct RfTracer). */
+static RfStatus cut_nonconvex(RfTracer *t)
+{
+    const RfScene *s = t->scene;
+    size_t total = 0;
+    for (size_t i = 0; i < s->prim_count; i++)
+        if (s->prims[i].type == RF_PRIM_POLYGON && (s->prims[i].flags & RF_PRIM_NONCONVEX))
+            total += 3 * (size_t)(s->prims[i].u.poly.count - 2);
+    if (total == 0)
+        return RF_OK;
+    t->cut = malloc(sizeof *t->cut * total);
+    t->cut_first = calloc(s->prim_count, sizeof *t->cut_first);
+    if (!t->cut || !t->cut_first)
+        return RF_ERR_NOMEM;
+    size_t at = 0;
+    for (size_t i = 0; i < s->prim_count; i++) {
+        const RfPrimitive *p = &s->prims[i];
+        if (p->type != RF_PRIM_POLYGON || !(p->flags & RF_PRIM_NONCONVEX))
+            continue;
+        t->cut_first[i] = at;
+        if (rf_triangulate_polygon(s->vertices + p->u.poly.first, p->u.poly.count, t->cut + at) < 0)
+            return RF_ERR_NOMEM;
+        at += 3 * (size_t)(p->u.poly.count - 2);
+    }
+    return RF_OK;
+}
+
 RfTracerOptions rf_tracer_options_default(void)
 {
     RfTracerOptions o;
@@ -315,13 +358,10 @@ RfStatus rf_tracer_create_opts(const RfScene *scene, const RfTracerOptions *opt,
         return RF_ERR_NOMEM;
     t->scene = scene;
     t->opt = opt ? *opt : rf_tracer_options_default();
-    int nonconvex = 0; /* only non-convex polygons need a normal of their own */
-    for (size_t i = 0; i < scene->prim_count && !nonconvex; i++)
-        nonconvex = scene->prims[i].type == RF_PRIM_POLYGON && (scene->prims[i].flags & RF_PRIM_NONCONVEX);
-    t->poly_normal = nonconvex ? calloc(scene->prim_count, sizeof *t->poly_normal) : NULL;
     t->objects = calloc(scene->object_count ? scene->object_count : 1, sizeof *t->objects);
-    RfStatus st = (t->poly_normal || !nonconvex) && t->objects ? build_level(t, 0, scene->prim_count, 1, &t->world)
-                                                               : RF_ERR_NOMEM;
+    RfStatus st = t->objects ? cut_nonconvex(t) : RF_ERR_NOMEM;
+    if (st == RF_OK)
+        st = build_level(t, 0, scene->prim_count, 1, &t->world);
     if (st != RF_OK) {
         rf_tracer_free(t);
         return st;
@@ -338,7 +378,13 @@ RfStatus rf_tracer_create(const RfScene *scene, RfTracer **out)
 size_t rf_tracer_bytes(const RfTracer *t)
 {
     const Level *lv[2] = {&t->world, NULL};
-    size_t bytes = sizeof *t + (t->poly_normal ? sizeof *t->poly_normal * t->scene->prim_count : 0);
+    size_t bytes = sizeof *t;
+    if (t->cut) {
+        for (size_t i = 0; i < t->scene->prim_count; i++)
+            if (t->scene->prims[i].type == RF_PRIM_POLYGON && (t->scene->prims[i].flags & RF_PRIM_NONCONVEX))
+                bytes += sizeof *t->cut * 3 * (size_t)(t->scene->prims[i].u.poly.count - 2);
+        bytes += sizeof *t->cut_first * t->scene->prim_count;
+    }
     for (size_t o = 0; o <= t->scene->object_count; o++) {
         const Level *l = o == 0 ? lv[0] : &t->objects[o - 1];
         bytes += rf_bvh_bytes(&l->bvh) + sizeof *l + sizeof *l->unbounded * (size_t)l->unbounded_count;
@@ -358,26 +404,6 @@ static double max_abs3(RfVec3 v)
 }
 
 /* ---- intersection ---- */
-
-/* Crossing-number test of the hit point against a (possibly non-convex) polygon, projected
- * onto the coordinate plane where its normal's largest component is dropped. */
-static int inside_polygon(const RfScene *s, const RfPrimitive *p, RfVec3 n, RfVec3 q)
-{
-    int drop = fabs(n.x) > fabs(n.y) ? (fabs(n.x) > fabs(n.z) ? 0 : 2) : (fabs(n.y) > fabs(n.z) ? 1 : 2);
-    int inside = 0, count = p->u.poly.count;
-#define PU(v) (drop == 0 ? (v).y : (v).x)
-#define PV(v) (drop == 2 ? (v).y : (v).z)
-    double qu = PU(q), qv = PV(q);
-    for (int k = 0, j = count - 1; k < count; j = k++) {
-        RfVec3 a = vertex(s, p, k), b = vertex(s, p, j);
-        if ((PV(a) > qv) != (PV(b) > qv) &&
-            qu < (PU(b) - PU(a)) * (qv - PV(a)) / (PV(b) - PV(a)) + PU(a))
-            inside = !inside;
-    }
-#undef PU
-#undef PV
-    return inside;
-}
 
 /* A nearest-hit (or, shadow = 1, any-hit) query through the levels. The details of the nearest
  * hit so far that is not a BVH triangle (spheres, cones, planes, instances) are kept here as
@@ -569,11 +595,7 @@ again:
                 own = rf_watertight_ray(ray);
                 wr = &own;
             }
-            ok = rf_intersect_triangle_watertight(wr, item_triangle(s, it), t_min, t_max, &h);
-        } else {
-            RfVec3 n = q->tracer->poly_normal[it.prim];
-            RfPlane pl = {n, rf_vec3_dot(n, vertex(s, p, 0))};
-            ok = rf_intersect_plane(ray, pl, t_min, t_max, &h) && inside_polygon(s, p, n, rf_ray_at(ray, h.t));
+            ok = rf_intersect_triangle_watertight(wr, item_triangle(q->tracer, it), t_min, t_max, &h);
         }
         break;
     case RF_PRIM_CONE: {
@@ -768,8 +790,9 @@ int rf_tracer_intersect_at(const RfTracer *t, RfRay ray, const RfMotionState *ms
         /* §3.6.3 Phong shading: interpolate the vertex normals with the barycentric coordinates */
         const RfVec3 *nv = s->normals + s->prims[q.item.prim].u.poly.nfirst;
         RfVec3 n;
-        if (rf_interpolate_normal(nv[0], nv[q.item.sub + 1], nv[q.item.sub + 2], q.hit.l[0], q.hit.l[1],
-                                  q.hit.l[2], &n) == RF_OK) {
+        int c[3];
+        item_corners(t, q.item, c);
+        if (rf_interpolate_normal(nv[c[0]], nv[c[1]], nv[c[2]], q.hit.l[0], q.hit.l[1], q.hit.l[2], &n) == RF_OK) {
             if (q.instanced) /* object space -> world (§4.9) */
                 n = rf_vec3_normalize(rf_mat3_mul_vec(q.nmat, n));
             /* keep it on the side of the geometric normal the ray sees */

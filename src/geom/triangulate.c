@@ -1,6 +1,7 @@
 /* Ear clipping of a simple polygon in the plane, in about linear time for the polygons scenes
- * hold (issue 13: the previous version rescanned every vertex for every ear, O(n^2) to O(n^3):
- * 15.6 s for a 100k-vertex star).
+ * hold (issue 13: the rasterizer's first version rescanned every vertex for every ear, O(n^2)
+ * to O(n^3): 15.6 s for a 100k-vertex star). The tracer cuts non-convex polygons into these
+ * triangles, the rasterizer draws them.
  *
  * Three things make it fast without changing what counts as an ear:
  *  - the vertices form a ring (next/prev), and the search for the next ear continues just past
@@ -19,7 +20,7 @@
  * Cutting an ear only makes its two neighbours' corners smaller, so a vertex's non-convex flag
  * is recomputed there and nowhere else. A polygon that is not simple can run out of ears; the
  * rest is then fanned, as before, rather than dropped. */
-#include "raster.h"
+#include "refray/geometry.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -93,10 +94,14 @@ static void grid_build(Ears *e)
     e->cell_start[0] = 0;
 }
 
-/* a, b, c is an ear: convex at b, and no blocking vertex inside or on it (collinear ones too) */
+/* a, b, c is an ear: strictly convex at b, and no blocking vertex inside or on it (collinear
+ * ones too). A flat corner is never cut: a triangle of zero area would take the polygon's edges
+ * a-b and b-c with it, and the neighbour sharing those edges would meet the diagonal a-c
+ * instead, a T-junction where the watertight test cannot promise anything (tracer.c). Once a
+ * neighbour is cut, the flat corner turns convex. */
 static int is_ear(const Ears *e, int a, int b, int c)
 {
-    if (corner(e, a, b, c) < 0.0)
+    if (!(corner(e, a, b, c) > 0.0))
         return 0;
     const double *u = e->u, *v = e->v;
     double ulo = fmin(u[a], fmin(u[b], u[c])), uhi = fmax(u[a], fmax(u[b], u[c]));
@@ -203,5 +208,28 @@ int rf_triangulate_polygon_2d(const double *u, const double *v, int n, int *out)
         out[3 * nt] = first, out[3 * nt + 1] = k, out[3 * nt + 2] = e.next[k], nt++;
 done:
     free(e.next), free(e.prev), free(e.blocker), free(e.cell_start), free(e.cell_items), free(e.cell_of_item);
+    return nt;
+}
+
+int rf_triangulate_polygon(const RfVec3 *v, int n, int *out)
+{
+    if (n < 3)
+        return 0;
+    /* in the coordinate plane that drops the largest component of Newell's normal, with the
+     * polygon's own orientation: every triangle keeps the polygon's winding (its facing side) */
+    RfVec3 nn = rf_vec3(0, 0, 0);
+    for (int k = 0; k < n; k++)
+        nn = rf_vec3_add(nn, rf_vec3_cross(v[k], v[(k + 1) % n]));
+    int drop = fabs(nn.x) > fabs(nn.y) ? (fabs(nn.x) > fabs(nn.z) ? 0 : 2) : (fabs(nn.y) > fabs(nn.z) ? 1 : 2);
+    double *u = malloc(sizeof *u * (size_t)n), *w = malloc(sizeof *w * (size_t)n);
+    int nt = -1;
+    if (u && w) {
+        for (int k = 0; k < n; k++) {
+            u[k] = drop == 0 ? v[k].y : v[k].x;
+            w[k] = drop == 2 ? v[k].y : v[k].z;
+        }
+        nt = rf_triangulate_polygon_2d(u, w, n, out);
+    }
+    free(u), free(w);
     return nt;
 }
