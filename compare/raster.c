@@ -81,14 +81,6 @@ static RfVec3 pvert(const RfScene *s, const RfPrimitive *p, int k)
     return s->vertices[p->u.poly.first + (size_t)k];
 }
 
-static RfVec3 newell(const RfScene *s, const RfPrimitive *p)
-{
-    RfVec3 n = rf_vec3(0, 0, 0);
-    for (int k = 0; k < p->u.poly.count; k++)
-        n = rf_vec3_add(n, rf_vec3_cross(pvert(s, p, k), pvert(s, p, (k + 1) % p->u.poly.count)));
-    return rf_vec3_normalize(n);
-}
-
 int rf_raster_triangulate(const RfScene *s, const RfPrimitive *p, int *out)
 {
     int n = p->u.poly.count;
@@ -186,14 +178,12 @@ static RfStatus add_polygon(Builder *b, const RfPrimitive *p, const Place *pl)
     int nt = rf_raster_triangulate(b->s, p, b->tris);
     if (nt < 0)
         return RF_ERR_NOMEM;
-    int nonconvex = p->type == RF_PRIM_POLYGON && (p->flags & RF_PRIM_NONCONVEX);
-    RfVec3 pn = nonconvex ? newell(b->s, p) : rf_vec3(0, 0, 0);
     for (int k = 0; k < nt; k++) {
         const int *t = b->tris + 3 * k;
-        /* the tracer's geometric normal: its fan triangle's, or Newell's, in the primitive's
-         * space, taken to the world by the normal matrix */
+        /* the tracer's geometric normal: its triangle's (a fan's or an ear-clipped one's), in the
+         * primitive's space, taken to the world by the normal matrix */
         RfVec3 v0 = pvert(b->s, p, t[0]), v1 = pvert(b->s, p, t[1]), v2 = pvert(b->s, p, t[2]);
-        RfVec3 n = nonconvex ? pn : rf_vec3_normalize(rf_vec3_cross(rf_vec3_sub(v1, v0), rf_vec3_sub(v2, v0)));
+        RfVec3 n = rf_vec3_normalize(rf_vec3_cross(rf_vec3_sub(v1, v0), rf_vec3_sub(v2, v0)));
         if (pl->instanced)
             n = rf_vec3_normalize(place_normal(pl, n));
         if (!add_triangle(b->g, b->s, p, t, n, pl))
