@@ -290,6 +290,38 @@ static void t_motion_equals_static_at_time(void)
     rf_scene_free(&st);
 }
 
+/* Keyframes in their order, by a render that does not call rf_motion_at on both sides: with
+ * the shutter open and closed at t = 0.25, the moving scene is the static one written by hand
+ * with the transforms a quarter of the way: the ball at x = -1 + 0.25 * 2 = -0.5, the bar turned
+ * 0.25 * 90 = 22.5 deg. (Keyframes interpolated backwards would put them at x = 0.5 and
+ * 67.5 deg.) */
+static void t_motion_quarter_shutter_is_static(void)
+{
+    RfScene mo, st;
+    static const char *still =
+        "camera eye 0 1.5 5  target 0 0.5 0  up 0 1 0  fov 40\nresolution 40 24\n"
+        "light point 2 4 3 intensity 20\nmaterial m kd 0.6 ks 0.3 shininess 20\n"
+        "polygon 4 -4 0 -4 -4 0 4 4 0 4 4 0 -4\nobject ball\nsphere 0 0 0 0.5\nend\n"
+        "object bar\npolygon 4 -0.8 -0.1 0  0.8 -0.1 0  0.8 0.1 0  -0.8 0.1 0\nend\n"
+        "instance ball translate -0.5 0.5 0\ninstance bar rotate z 22.5 translate 0 1.5 0\n";
+    if (!load(MOTION_SCENE("0.25 0.25"), &mo) || !load(still, &st))
+        return;
+    RfImage a, b;
+    RfRenderOptions o = rf_render_options_default();
+    o.samples = 1;
+    if (render(&mo, o, &a) && render(&st, o, &b)) {
+        RF_CHECK(a.width == b.width && a.height == b.height);
+        double d = mean_abs_diff(&a, &b);
+        if (!(d < 1e-9))
+            rf_test_fail(__FILE__, __LINE__, "mean |moving at 0.25 - static| = %g", d);
+        rf_test_checks++;
+        rf_image_free(&a);
+        rf_image_free(&b);
+    }
+    rf_scene_free(&mo);
+    rf_scene_free(&st);
+}
+
 /* The blurred image is the mean over the shutter: against the mean of 16 static renders at the
  * times (j + 1/2)/16 (shutter closed at that time), within the noise of 64 samples. */
 static void t_motion_blur_is_time_average(void)
@@ -533,6 +565,7 @@ const RfTest rf_tests_distributed[] = {
     {"distributed_aperture_zero_is_pinhole", t_aperture_zero_is_pinhole},
     {"distributed_motion_interpolation", t_motion_interpolation},
     {"distributed_motion_equals_static_at_time", t_motion_equals_static_at_time},
+    {"distributed_motion_quarter_shutter_is_static", t_motion_quarter_shutter_is_static},
     {"distributed_motion_blur_is_time_average", t_motion_blur_is_time_average},
     {"distributed_glossy_tends_to_mirror", t_glossy_tends_to_mirror},
     {"distributed_adaptive_supersampling", t_adaptive_supersampling},
