@@ -493,7 +493,7 @@ struct TraceAns {
 
 // The library's tracer (rf_tracer_intersect), or with --triangle/--sphere the same nearest-hit
 // loop over the §3.5 kernels with the chosen methods (the planted-bug mode: the world's
-// triangles, spheres, planes and cones; polygons and instances are not in this loop).
+// triangles, polygons' included, spheres, planes and cones; instances are not in this loop).
 TraceAns tracer_query(const World &w, const Opts &o, RfRay r, double t_max)
 {
     if (!o.kernel) {
@@ -569,99 +569,6 @@ Margin ratio_margin(L r) { return {r, (L)(1 / kDelta)}; }
 // The ray's deviation in an object's space (the tracer's rounded object-space ray against the
 // exact one), as a distance near parameter t: dev_o + dev_d t.
 L dev_at(const LocalRay &lr, L t) { return lr.dev_o + (lr.dev_d > 0 ? lr.dev_d * std::fabs(t) : 0); }
-
-// A non-convex polygon as the tracer sees it: Newell's normal through v0, the point test in
-// the projection that drops the normal's largest coordinate.
-struct PolyGeom {
-    std::vector<LV> v;
-    LV N;
-    L nl, vmax, diam, newell_rel, nonplanar;
-    int drop;
-    bool tie; // the two largest normal coordinates nearly equal: the tracer's projection may differ
-};
-
-PolyGeom poly_geom(const Oracle &orc, const Item &it)
-{
-    PolyGeom g;
-    int n = it.poly_count;
-    LV lo{HUGE_VALL, HUGE_VALL, HUGE_VALL}, hi{-HUGE_VALL, -HUGE_VALL, -HUGE_VALL};
-    g.N = {0, 0, 0};
-    g.vmax = 0;
-    L sum = 0;
-    for (int k = 0; k < n; k++)
-        g.v.push_back(lv(orc.vertex(it, k)));
-    for (int k = 0; k < n; k++) {
-        const LV &a = g.v[(size_t)k], &b = g.v[(size_t)((k + 1) % n)];
-        g.N = add(g.N, cross(a, b));
-        sum += len(a) * len(b);
-        g.vmax = std::max(g.vmax, len(a));
-        lo = {std::min(lo.x, a.x), std::min(lo.y, a.y), std::min(lo.z, a.z)};
-        hi = {std::max(hi.x, a.x), std::max(hi.y, a.y), std::max(hi.z, a.z)};
-    }
-    g.nl = len(g.N);
-    g.diam = len(sub(hi, lo));
-    // Newell's sum in double: n cross products and n additions of terms <= |v_k| |v_k+1|, so
-    // the normal's direction is within (n + 2) eps sum / |N|; in units of 16 eps
-    g.newell_rel = (L)(n + 2) / 16 * sum / g.nl;
-    g.nonplanar = 0;
-    for (const LV &a : g.v)
-        g.nonplanar = std::max(g.nonplanar, std::fabs(dot(g.N, sub(a, g.v[0]))) / g.nl);
-    L ax = std::fabs(g.N.x), ay = std::fabs(g.N.y), az = std::fabs(g.N.z);
-    g.drop = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
-    L m1 = std::max({ax, ay, az}), m2 = ax + ay + az - m1 - std::min({ax, ay, az});
-    g.tie = m1 - m2 <= 1e-12L * m1;
-    return g;
-}
-
-// Distance from (pu, pv) to the segment (au, av) - (bu, bv).
-L seg_dist(L pu, L pv, L au, L av, L bu, L bv)
-{
-    L eu = bu - au, ev = bv - av, wu = pu - au, wv = pv - av, ee = eu * eu + ev * ev;
-    L s = ee > 0 ? std::min((L)1, std::max((L)0, (wu * eu + wv * ev) / ee)) : 0;
-    L du = wu - s * eu, dv = wv - s * ev;
-    return std::sqrt(du * du + dv * dv);
-}
-
-// The polygon's boundaries: the origin on its plane (t = 0), the ray parallel to it, and the
-// hit point on an edge (in the projection the tracer's crossing test uses). The hit point of
-// the tracer moves along the ray by its plane's error over cos: ~7 eps (S + t |d|) / cos, plus
-// Newell's tilt times the distance from v0; the crossing test adds a few eps of the
-// coordinates. Returned as a ratio (ambiguous when <= 1).
-Margin poly_margin(const PolyGeom &g, const LocalRay &lr)
-{
-    LV o = lr.o, d = lr.d;
-    L dl = len(d), den = dot(g.N, d), cosv = std::fabs(den) / (g.nl * dl);
-    L h0 = std::fabs(dot(g.N, sub(o, g.v[0]))) / g.nl;
-    L S0 = std::max(len(o), len(g.v[0])) + g.newell_rel * len(sub(o, g.v[0]));
-    L r = h0 / ((L)kDelta * S0 + 4 * lr.dev_o);
-    r = std::min(r, cosv / ((L)kDelta * (1 + g.newell_rel) + 4 * lr.dev_d / dl));
-    if (den != 0) {
-        L t = dot(g.N, sub(g.v[0], o)) / den;
-        if (t >= 0) {
-            LV q = add(o, scale(d, t));
-            int iu = g.drop == 0 ? 1 : 0, iv = g.drop == 2 ? 1 : 2;
-            L qu = comp(q, iu), qv = comp(q, iv), me = HUGE_VALL;
-            size_t n = g.v.size();
-            for (size_t k = 0; k < n; k++) {
-                const LV &a = g.v[k], &b = g.v[(k + 1) % n];
-                me = std::min(me, seg_dist(qu, qv, comp(a, iu), comp(a, iv), comp(b, iu), comp(b, iv)));
-            }
-            L Sp = std::max({len(o), g.vmax, t * dl}) + g.newell_rel * g.diam;
-            r = std::min(r, me * cosv / ((L)kDelta * Sp + 4 * dev_at(lr, t)));
-        }
-    }
-    if (g.tie && g.nonplanar > 0)
-        r = 0;
-    return ratio_margin(r);
-}
-
-// The tolerance on the tracer's t for a polygon hit near t (as for planes, with Newell's tilt).
-L poly_band(const PolyGeom &g, const LocalRay &lr, L t)
-{
-    L dl = len(lr.d), cosv = std::max(std::fabs(dot(g.N, lr.d)) / (g.nl * dl), (L)1e-300);
-    L Sp = std::max(len(lr.o), g.vmax) + g.newell_rel * g.diam + 4 * dev_at(lr, t) / (L)kDelta;
-    return (L)kDelta * std::max(Sp, std::fabs(t) * dl) / (cosv * dl);
-}
 
 // A cone in the tracer's own terms (rf_intersect_cone): unit axis k, slope m, the quadratic
 // a t^2 + 2 bh t + c of the ray with coefficients computed as the tracer does (here in long
@@ -775,11 +682,10 @@ Margin cone_margin(const ConeGeom &g, const LocalRay &lr)
 // How far the ray is from changing its answer for this item: triangles: the distance from the
 // ray's line to each edge line (the perpendicular shift that puts the ray on the edge) and from
 // the origin to the plane (t = 0); spheres: | |v| - r | (tangency) and | |f| - r | (origin on
-// the sphere); planes: the origin's distance and the ray's tilt out of the plane; polygons and
-// cones: see poly_margin, cone_margin. In an object's space the object-space ray's deviation
-// (the tracer's rounded inverse and transform) is added: 4 (dev_o + dev_d R / |d|) at the
-// item's distance R.
-Margin margin(const Oracle &orc, const Item &it, const LocalRay &lr)
+// the sphere); planes: the origin's distance and the ray's tilt out of the plane; cones: see
+// cone_margin. In an object's space the object-space ray's deviation (the tracer's rounded
+// inverse and transform) is added: 4 (dev_o + dev_d R / |d|) at the item's distance R.
+Margin margin(const Item &it, const LocalRay &lr)
 {
     LV o = lr.o, d = lr.d;
     L dl = len(d);
@@ -820,8 +726,6 @@ Margin margin(const Oracle &orc, const Item &it, const LocalRay &lr)
         }
         return {std::min(m, cosv * S), S};
     }
-    case ITEM_POLY:
-        return poly_margin(poly_geom(orc, it), lr);
     case ITEM_CONE:
         return cone_margin(cone_geom(it, lr), lr);
     default:
@@ -852,15 +756,13 @@ L cos_at(const Item &it, const LocalRay &lr, L t)
 
 // The tolerance on t (units of |dir|) for an item hit near t: kDelta S / cos, with S grown to
 // the hit's distance t |dir| (a plane's t = num / <d,n> has the relative error eps / cos of
-// its denominator, i.e. an error in position of eps t |d| / cos). Polygons and cones: their
-// own bands (poly_band, cone_band).
-L t_band(const Oracle &orc, const Item &it, const LocalRay &lr, L t)
+// its denominator, i.e. an error in position of eps t |d| / cos). Cones: their own band
+// (cone_band).
+L t_band(const Item &it, const LocalRay &lr, L t)
 {
-    if (it.kind == ITEM_POLY)
-        return poly_band(poly_geom(orc, it), lr, t);
     if (it.kind == ITEM_CONE)
         return cone_band(cone_geom(it, lr), t);
-    Margin m = margin(orc, it, lr);
+    Margin m = margin(it, lr);
     L dl = len(lr.d), c = std::max(cos_at(it, lr, t), (L)1e-300);
     return (L)kDelta * std::max(m.S, std::fabs(t) * dl) / (c * dl);
 }
@@ -903,7 +805,7 @@ Check check_ray(const World &w, const Opts &o, RfRay r, int interior)
     // the tolerance for the tracer's t on its own primitive
     L tol = -1;
     for (const Cand &cd : tc)
-        tol = std::max(tol, t_band(orc, items[(size_t)cd.item], lrs.get(cd.path), c.t.t));
+        tol = std::max(tol, t_band(items[(size_t)cd.item], lrs.get(cd.path), c.t.t));
     if (std::isnan(tol))
         tol = HUGE_VALL;
     if (g_fault_every > 0 && ++g_fault_count % g_fault_every == 0)
@@ -922,9 +824,9 @@ Check check_ray(const World &w, const Opts &o, RfRay r, int interior)
         same |= t_hit && items[(size_t)cd.item].prim == c.t.prim;
     bool amb = e.coplanar;
     for (const Cand &cd : e.items)
-        amb |= margin(orc, items[(size_t)cd.item], lrs.get(cd.path)).near();
+        amb |= margin(items[(size_t)cd.item], lrs.get(cd.path)).near();
     for (const Cand &cd : tc)
-        amb |= margin(orc, items[(size_t)cd.item], lrs.get(cd.path)).near();
+        amb |= margin(items[(size_t)cd.item], lrs.get(cd.path)).near();
     if (same) {
         if (e.t_ok)
             return c;
@@ -935,7 +837,7 @@ Check check_ray(const World &w, const Opts &o, RfRay r, int interior)
     if (t_hit && e.hit) {
         L band = 0;
         for (const Cand &cd : e.items)
-            band = std::max(band, t_band(orc, items[(size_t)cd.item], lrs.get(cd.path), e.t));
+            band = std::max(band, t_band(items[(size_t)cd.item], lrs.get(cd.path), e.t));
         band = std::max(band, tol);
         tie = !(std::fabs((L)c.t.t - e.t) > band);
         amb |= tie;
@@ -1107,10 +1009,10 @@ RfVec3 cone_point(const RfCone &c, const ConeFrame &f, double w, double phi, dou
     return rf_vec3_add(rf_vec3_add(c.base, rf_vec3_scale(f.k, w * f.H)), rf_vec3_scale(*radial, *rho));
 }
 
-const unsigned kEdgeKinds = 1u << ITEM_TRI | 1u << ITEM_POLY | 1u << ITEM_CONE;
+const unsigned kEdgeKinds = 1u << ITEM_TRI | 1u << ITEM_CONE;
 
-// Aimed at a vertex (exactly) or an edge point of a random triangle or polygon, or at a point
-// of a cone's rim; from inside a closed mesh when there is one (a dyadic origin in a grid
+// Aimed at a vertex (exactly) or an edge point of a random triangle (a polygon's too), or at a
+// point of a cone's rim; from inside a closed mesh when there is one (a dyadic origin in a grid
 // cube: the direction is then exact and the ray passes exactly through the edge or vertex),
 // else from anywhere around. Items of objects: the target (and an origin inside the object's
 // mesh) in object space, then placed by the composed to_world.
@@ -1122,7 +1024,6 @@ RfRay gen_edges(const World &w, Rng &rng, int *interior)
     if (!pick(w, rng, kEdgeKinds, pl))
         return gen_uniform(w, rng);
     const Item &t = items[(size_t)pl.item];
-    RfVec3 a, b;
     if (t.kind == ITEM_CONE) {
         ConeFrame f = cone_frame(t.cone);
         double rho;
@@ -1131,15 +1032,8 @@ RfRay gen_edges(const World &w, Rng &rng, int *interior)
         RfVec3 o = box_point(w.bounds, 1.4, rng);
         return rf_ray(o, rf_vec3_sub(pl.map(p), o));
     }
-    if (t.kind == ITEM_POLY) {
-        int k = rng.below(t.poly_count);
-        a = w.orc->vertex(t, k);
-        b = w.orc->vertex(t, (k + 1) % t.poly_count);
-    } else {
-        int k = rng.below(3);
-        a = t.p[k];
-        b = t.p[(k + 1) % 3];
-    }
+    int k = rng.below(3);
+    RfVec3 a = t.p[k], b = t.p[(k + 1) % 3];
     RfVec3 target = a;
     int kind = rng.below(3);
     RfVec3 o;
@@ -1207,14 +1101,14 @@ bool gen_grazing(const World &w, Rng &rng, RfRay *out)
     return true;
 }
 
-// Nearly parallel to a random triangle, polygon or plane: an in-plane direction tilted by 0 or
-// +-10^U(-17, -2), from a point at height 0 or +-10^U(-16, -1) of the size above it; or nearly
-// parallel to a generator of a cone (the quadratic's linear case), from near its surface.
+// Nearly parallel to a random triangle (a polygon's too) or plane: an in-plane direction tilted
+// by 0 or +-10^U(-17, -2), from a point at height 0 or +-10^U(-16, -1) of the size above it; or
+// nearly parallel to a generator of a cone (the quadratic's linear case), from near its surface.
 bool gen_parallel(const World &w, Rng &rng, RfRay *out)
 {
     const auto &items = w.orc->items();
     Placed pl;
-    if (!pick(w, rng, 1u << ITEM_TRI | 1u << ITEM_PLANE | 1u << ITEM_POLY | 1u << ITEM_CONE, pl))
+    if (!pick(w, rng, 1u << ITEM_TRI | 1u << ITEM_PLANE | 1u << ITEM_CONE, pl))
         return false;
     const Item &it = items[(size_t)pl.item];
     RfVec3 n, q;
@@ -1229,19 +1123,6 @@ bool gen_parallel(const World &w, Rng &rng, RfRay *out)
                                           rf_vec3_scale(rf_vec3_sub(p[2], p[0]), l2)));
         size = pl.M ? rf_vec3_length(rf_vec3_sub(rf_vec3_add(rf_vec3_sub(p[1], p[0]), p[2]), p[0]))
                     : rf_vec3_length(rf_vec3_sub(it.box.hi, it.box.lo));
-    } else if (it.kind == ITEM_POLY) {
-        std::vector<RfVec3> v;
-        RfAabb b = rf_aabb_empty();
-        n = rf_vec3(0, 0, 0);
-        for (int k = 0; k < it.poly_count; k++) {
-            v.push_back(pl.map(w.orc->vertex(it, k)));
-            b = rf_aabb_add_point(b, v.back());
-        }
-        for (size_t k = 0; k < v.size(); k++)
-            n = rf_vec3_add(n, rf_vec3_cross(v[k], v[(k + 1) % v.size()]));
-        n = rf_vec3_normalize(n);
-        q = rf_vec3_lerp(v[(size_t)rng.below((int)v.size())], v[(size_t)rng.below((int)v.size())], rng.u());
-        size = rf_vec3_length(rf_vec3_sub(b.hi, b.lo));
     } else if (it.kind == ITEM_CONE) {
         const RfCone &c = it.cone;
         ConeFrame f = cone_frame(c);
@@ -1367,11 +1248,7 @@ void surface_ray(const World &w, const Opts &o, Rng &rng, Stats &st)
         RfVec3 nn;
         if (it.kind == ITEM_PLANE)
             nn = it.pl.normal;
-        else if (it.kind == ITEM_POLY) {
-            nn = rf_vec3(0, 0, 0);
-            for (int k = 0; k < it.poly_count; k++)
-                nn = rf_vec3_add(nn, rf_vec3_cross(w.orc->vertex(it, k), w.orc->vertex(it, (k + 1) % it.poly_count)));
-        } else
+        else
             nn = rf_vec3_cross(rf_vec3_sub(it.p[1], it.p[0]), rf_vec3_sub(it.p[2], it.p[0]));
         want = rf_vec3_dot(d, nn) > 0 ? 1 : -1;
     }

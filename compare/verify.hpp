@@ -81,11 +81,11 @@ struct Affine {
 
 // ---- the oracle ------------------------------------------------------------------------------
 
-enum ItemKind { ITEM_TRI, ITEM_SPHERE, ITEM_PLANE, ITEM_POLY, ITEM_CONE, ITEM_INSTANCE };
+enum ItemKind { ITEM_TRI, ITEM_SPHERE, ITEM_PLANE, ITEM_CONE, ITEM_INSTANCE };
 
-// One thing the oracle intersects, made from the tracer's own doubles (a convex polygon becomes
-// the tracer's fan triangles v0, v(k+1), v(k+2); a non-convex one stays one ITEM_POLY). Items
-// of an object (level o + 1) live in that object's space and are reached through instances.
+// One thing the oracle intersects, made from the tracer's own doubles (a polygon becomes the
+// tracer's triangles: a convex one's fan v0, v(k+1), v(k+2), a non-convex one's ear clipping).
+// Items of an object (level o + 1) live in that object's space and are reached through instances.
 struct Item {
     ItemKind kind;
     int prim;       // the scene primitive (the tracer reports an object's primitive by its own index)
@@ -95,8 +95,6 @@ struct Item {
     RfSphere s;
     RfPlane pl;
     RfCone cone;
-    size_t poly_first; // ITEM_POLY: scene vertices [poly_first, poly_first + poly_count)
-    int poly_count;
     int inst;       // ITEM_INSTANCE: index into RfScene.instances
     RfAabb box;     // in its level's space; empty: unbounded (planes, instances of unbounded objects)
 };
@@ -127,8 +125,8 @@ struct ExactHit {
     std::vector<Cand> items; // the nearest items (several when exactly tied)
     long double t = 0;       // the exact nearest t, rounded (for reports and tie bands)
     bool t_ok = false;       // exact |t - tracer_t| <= tol (when asked)
-    bool coplanar = false;   // the ray lies in the plane of a candidate triangle/polygon/plane, or
-                             // in a cone's surface (the tracer's "no hit" by contract)
+    bool coplanar = false;   // the ray lies in the plane of a candidate triangle or plane, or in
+                             // a cone's surface (the tracer's "no hit" by contract)
     bool inconsistent = false; // CGAL's do_intersect(Ray_3, Sphere_3) disagreed with the root test
 };
 
@@ -143,11 +141,10 @@ public:
 
     const RfScene *scene() const { return scene_; }
     const std::vector<Item> &items() const { return items_; }
-    // Every item of a primitive (fan triangles of a convex polygon), of any level.
+    // Every item of a primitive (a polygon's triangles), of any level.
     const std::vector<int> &items_of(int prim) const { return prim_items_[(size_t)prim]; }
     // The items of a level (0: world, o + 1: object o).
     const std::vector<int> &level_items(int level) const;
-    RfVec3 vertex(const Item &it, int k) const { return scene_->vertices[it.poly_first + (size_t)k]; }
     // The path below `parent` through scene instance `inst` (made on demand; throws
     // SceneError when the composed matrices leave the verifier's range).
     int child_path(int parent, int inst) const;
@@ -159,12 +156,11 @@ public:
     // instances entered.
     void candidates(RfRay ray, std::vector<Cand> &out) const;
     // The exact nearest hit at t >= 0 among cands with the tracer's rules (the first root of a
-    // sphere or cone in range that faces the visible side, one-sidedness; a ray in a
-    // triangle's or polygon's plane does not hit it). When tol >= 0, t_ok says whether the
-    // exact t lies within tol of tracer_t. May throw (CGAL, std::bad_alloc): the caller counts
-    // the ray as not representable.
+    // sphere or cone in range that faces the visible side, one-sidedness; a ray in a triangle's
+    // plane does not hit it). When tol >= 0, t_ok says whether the exact t lies within tol of
+    // tracer_t. May throw (CGAL, std::bad_alloc): the caller counts the ray as not representable.
     ExactHit nearest(RfRay ray, const std::vector<Cand> &cands, double tracer_t, double tol) const;
-    // Exact side of q (world items): triangle/plane/polygon: sign of <q - p1, N>; sphere:
+    // Exact side of q (world items): triangle/plane: sign of <q - p1, N>; sphere:
     // sign(|q - c|^2 - r^2); cone: sign of (distance from the axis)^2 - radius^2 (0 elsewhere).
     int side(int item, RfVec3 q) const;
     // Exact sign of <d, N> for a world triangle (its winding's normal), 0 for other items.

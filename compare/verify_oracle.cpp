@@ -40,8 +40,8 @@ typedef K::Vector_3 Vector;
 
 namespace {
 
-// den t = x + s sqrt(D) with den > 0, s in {-1, 0, 1}: triangles, planes and polygons have
-// s = 0 (t rational), sphere and cone roots s = -1 (near) or +1 (far). Roots of one ray in one
+// den t = x + s sqrt(D) with den > 0, s in {-1, 0, 1}: triangles and planes have s = 0
+// (t rational), sphere and cone roots s = -1 (near) or +1 (far). Roots of one ray in one
 // space share den = <d,d> (den_id: the path), so they compare without any division; a cone's
 // roots carry their own denominator (den_id -1).
 struct Root {
@@ -92,8 +92,6 @@ int cmp_roots(const Root &A, const Root &B)
 
 Point pt(RfVec3 v) { return Point(v.x, v.y, v.z); }
 Vector vc(RfVec3 v) { return Vector(v.x, v.y, v.z); }
-FT coord(const Point &p, int k) { return k == 0 ? p.x() : k == 1 ? p.y() : p.z(); }
-FT coord(const Vector &p, int k) { return k == 0 ? p.x() : k == 1 ? p.y() : p.z(); }
 double coord(RfVec3 v, int k) { return k == 0 ? v.x : k == 1 ? v.y : v.z; }
 
 // A long double close to the exact value: a double within an ulp of it plus one within an ulp
@@ -178,7 +176,6 @@ struct Oracle::Impl {
         Point c;
         FT r2;
         FT off;
-        int drop = 2;    // polygon: the coordinate dropped for the point test
         Point base;      // cone
         Vector A;        // apex - base
         FT AA, rb, dr;   // <A,A>, base radius, apex radius - base radius
@@ -461,22 +458,6 @@ Oracle::Oracle(const RfScene *s)
         } else if (it.kind == ITEM_PLANE) {
             e.n = vc(it.pl.normal);
             e.off = FT(it.pl.offset);
-        } else if (it.kind == ITEM_POLY) {
-            // the tracer's plane: Newell's normal through v0 (here exact); its point test drops
-            // the normal's largest coordinate (the same comparisons, exact)
-            FT nx = 0, ny = 0, nz = 0;
-            for (int k = 0; k < it.poly_count; k++) {
-                RfVec3 a = vertex(it, k), b = vertex(it, (k + 1) % it.poly_count);
-                nx = nx + (FT(a.y) * FT(b.z) - FT(a.z) * FT(b.y));
-                ny = ny + (FT(a.z) * FT(b.x) - FT(a.x) * FT(b.z));
-                nz = nz + (FT(a.x) * FT(b.y) - FT(a.y) * FT(b.x));
-            }
-            CGAL::exact(nx), CGAL::exact(ny), CGAL::exact(nz);
-            e.n = Vector(nx, ny, nz);
-            e.c = pt(vertex(it, 0));
-            e.degenerate = sgn(nx) == 0 && sgn(ny) == 0 && sgn(nz) == 0;
-            FT ax = CGAL::abs(nx), ay = CGAL::abs(ny), az = CGAL::abs(nz);
-            e.drop = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
         } else if (it.kind == ITEM_CONE) {
             e.base = pt(it.cone.base);
             e.A = pt(it.cone.apex) - e.base;
@@ -724,48 +705,6 @@ struct ExRay {
 
 typedef CGAL::Interval_nt<false> I;
 
-// The crossing-number test of tracer.c inside_polygon, exactly: for each edge (a = v_k,
-// b = v_(k-1)) that straddles the line v = qv (one endpoint above, the other not), does the
-// crossing lie to the right of q? (qu, qv) is q scaled by as > 0 (null: 1), the vertices are
-// scaled by it here.
-bool inside_polygon_exact(const Oracle &orc, const Item &it, int drop, const FT &qu, const FT &qv, const FT *as)
-{
-    int iu = drop == 0 ? 1 : 0, iv = drop == 2 ? 1 : 2;
-    std::pair<double, double> ivl;
-    {
-        CGAL::Protect_FPU_rounding<true> prot;
-        I q = CGAL::to_interval(qv);
-        if (as)
-            q = q / I(CGAL::to_interval(*as));
-        ivl = std::make_pair(q.inf(), q.sup());
-    }
-    auto S = [&](double v) { return as ? *as * FT(v) : FT(v); };
-    auto above = [&](double av) { // av > qv / as
-        if (av > ivl.second)
-            return true;
-        if (av <= ivl.first)
-            return false;
-        return sgn(qv - S(av)) < 0;
-    };
-    bool inside = false;
-    int count = it.poly_count;
-    bool prev_above = above(coord(orc.vertex(it, count - 1), iv));
-    for (int k = 0, j = count - 1; k < count; j = k++) {
-        RfVec3 a = orc.vertex(it, k), b = orc.vertex(it, j);
-        bool ka = above(coord(a, iv));
-        bool jb = prev_above;
-        prev_above = ka;
-        if (ka == jb)
-            continue;
-        FT au = S(coord(a, iu)), av = S(coord(a, iv)), bu = S(coord(b, iu)), bv = S(coord(b, iv));
-        FT dv = bv - av;
-        int s = sgn((bu - au) * (qv - av) - (qu - au) * dv) * sgn(dv);
-        if (s > 0)
-            inside = !inside;
-    }
-    return inside;
-}
-
 // A filter for the common case of a cone candidate the ray misses: the cone quadratic's
 // discriminant (see nearest) in interval arithmetic over the exact object-space ray's
 // intervals (P / sigma, Q / sigma); certainly negative means no real root, so no hit.
@@ -963,29 +902,6 @@ ExactHit Oracle::nearest(RfRay ray, const std::vector<Cand> &cand, double tracer
             front = xr.sg * sgn(den) < 0;
             break;
         }
-        case ITEM_POLY: {
-            if (e.degenerate)
-                continue;
-            FT den = e.n * D, num = e.n * (xr.sc(e.c) - O);
-            if (sgn(den) == 0) {
-                if (sgn(num) == 0)
-                    res.coplanar = true;
-                continue;
-            }
-            FT t = num / den;
-            if (sgn(t) < 0)
-                continue;
-            int iu = e.drop == 0 ? 1 : 0, iv = e.drop == 2 ? 1 : 2;
-            // the hit point scaled by |sigma| (q_object |sigma| = sign(sigma) (P + t Q))
-            FT qu = coord(O, iu) + t * coord(D, iu), qv = coord(O, iv) + t * coord(D, iv);
-            if (xr.sg < 0)
-                qu = -qu, qv = -qv;
-            if (!inside_polygon_exact(*this, it, e.drop, qu, qv, xr.unit ? nullptr : &xr.as))
-                continue;
-            r.x = xr.a * t;
-            front = xr.sg * sgn(den) < 0;
-            break;
-        }
         case ITEM_CONE: {
             // Q(t) = <A,A>^2 (|q_perp|^2 - rho(q)^2) for q = O + t D - base, rho the radius at
             // q's axial position: a t^2 + 2 bh t + c, positive outside; the axial position
@@ -1092,8 +1008,6 @@ int Oracle::side(int item, RfVec3 q) const
         return sgn(CGAL::squared_distance(Q, e.c) - e.r2);
     case ITEM_PLANE:
         return sgn(e.n * (Q - CGAL::ORIGIN) - e.off);
-    case ITEM_POLY:
-        return sgn(e.n * (Q - e.c));
     case ITEM_CONE: {
         Vector f = Q - e.base;
         FT fA = f * e.A, R0 = e.rb * e.AA + e.dr * fA;
