@@ -201,9 +201,11 @@ static void test_stress_offset_policy(void)
     h.point = rf_vec3(1e-12, 0, 0);
     h.scale = 1e-12;
     RF_CHECK_NEAR(rf_hit_offset_origin(&h, rf_vec3(0, 1, 1), 0.0).z, 1e-12 * RF_RAY_OFFSET_REL, 1e-12, 0);
-    /* the tracer's scale: the ray's origin counts, and a cone's hit gets its factor */
+    /* the tracer's scale: a sphere's hit is put back on the sphere, so the ray's origin does not
+     * count, only the sphere's size (|c| + r); a triangle's is its vertices'; a cone's hit is
+     * not, and its scale is the largest of the hit's and the origin's, times its factor */
     static const char text[] = "camera eye 0 0 5 target 0 0 0 up 0 1 0 fov 40\nsphere 0 0 0 1\n"
-                               "cone 10 0 0 1  10 2 0 0.5\n";
+                               "cone 10 0 0 1  10 2 0 0.5\ntriangle -30 0 -1  -20 0 -1  -25 -4 -1\n";
     RfScene s;
     char err[256];
     RfTracer *t = NULL;
@@ -212,9 +214,13 @@ static void test_stress_offset_policy(void)
         return;
     }
     RF_CHECK(rf_tracer_intersect(t, rf_ray(rf_vec3(0, 0, 300), rf_vec3(0, 0, -1)), 0.0, HUGE_VAL, &h) == 0);
-    RF_CHECK_NEAR(h.scale, 300.0, 0, 0);
+    RF_CHECK_NEAR(h.scale, 1.0, 0, 0);
+    RF_CHECK(fabs(rf_vec3_length(h.point) - 1.0) <= 2e-16); /* on the sphere, to an ulp */
     RF_CHECK(rf_tracer_intersect(t, rf_ray(rf_vec3(10, 0.5, 5), rf_vec3(0, 0, -1)), 0.0, HUGE_VAL, &h) == 1);
     RF_CHECK_NEAR(h.scale, 10.0 * RF_RAY_OFFSET_CONE, 1e-15, 0);
+    RF_CHECK(rf_tracer_intersect(t, rf_ray(rf_vec3(-25, -1, 1e6), rf_vec3(0, 0, -1)), 0.0, HUGE_VAL, &h) == 2);
+    RF_CHECK_NEAR(h.scale, 30.0, 0, 0);
+    RF_CHECK(h.point.z == -1.0); /* from the barycentric coordinates: exactly in the plane z = -1 */
     rf_tracer_free(t);
     rf_scene_free(&s);
 }

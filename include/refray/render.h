@@ -141,8 +141,12 @@ typedef struct {
     RfVec3 point, normal;   /* geometric normal, unit, facing the side the ray came from */
     RfVec3 shading_normal;  /* interpolated (smooth materials) or = normal, same side */
     int front;              /* 1 when the ray hit the outward / counter-clockwise side */
-    double scale;           /* the largest |coordinate| of the ray's origin and of the hit point:
-                               the point's rounding error is a few ulps of it (rf_hit_offset_origin) */
+    double scale;           /* the size of the numbers the point is made of: its rounding error is a
+                               few ulps of it (numeric.h, rf_hit_offset_origin). Spheres, triangles
+                               and planes: the point is put back on the surface, and this is the
+                               largest |coordinate| of the sphere (centre + radius), the triangle's
+                               vertices or the plane's point; cones and hits in instances: of the
+                               hit point and the ray's origin, times RF_RAY_OFFSET_CONE/_INSTANCE */
 } RfSurfaceHit;
 int rf_tracer_intersect(const RfTracer *tracer, RfRay ray, double t_min, double t_max, RfSurfaceHit *hit);
 /* §3.10 motion blur: the moving instances' transforms at one time, made once per sample path
@@ -167,7 +171,7 @@ int rf_tracer_occluded_cached_at(const RfTracer *tracer, RfRay ray, const RfMoti
 
 /* The self-intersection policy (numeric.h RF_RAY_OFFSET_REL): the hit point moved off the
  * surface along the unit geometric normal to the side dir leaves by, by RF_RAY_OFFSET_REL times
- * h->scale, so that it scales with the coordinates the point was computed from, whatever the
+ * h->scale, so that it scales with the numbers the point was computed from, whatever the
  * scene's size or place (no floor). fixed_offset > 0 moves it by that absolute distance instead
  * (RfRenderOptions.fixed_offset, the verifier's planted bug: a scale-blind epsilon must be caught
  * by the acne measurement). */

@@ -774,12 +774,35 @@ int rf_tracer_intersect_at(const RfTracer *t, RfRay ray, const RfMotionState *ms
     out->prim = q.item.prim;
     out->material = q.material;
     out->point = rf_ray_at(ray, q.hit.t);
-    /* the hit point's error bound, in units of RF_RAY_OFFSET_REL (numeric.h): a few ulps of the
-     * coordinates it came from; a cone's quadratic and an instance's matrices lose more */
-    out->scale = max_abs3(out->point);
+    /* the hit point's error bound, in units of RF_RAY_OFFSET_REL (numeric.h). o + t d carries the
+     * rounding of t, which grows with the distance travelled; a point put back on its surface
+     * does not (pbrt-v4's reprojection): a sphere's along its radius, a triangle's from its
+     * barycentric coordinates, a plane's along its normal. Their errors are a few ulps of the
+     * coordinates they are made of. A cone's quadratic and an instance's matrices lose more. */
+    const RfPrimitive *pr = &s->prims[q.item.prim];
     double so = max_abs3(ray.origin);
+    out->scale = max_abs3(out->point);
     out->scale = so > out->scale ? so : out->scale;
-    if (s->prims[q.item.prim].type == RF_PRIM_CONE)
+    if (!q.instanced && pr->type == RF_PRIM_SPHERE) {
+        RfVec3 v = rf_vec3_sub(out->point, pr->u.sphere.center);
+        double len = rf_vec3_length(v);
+        if (len > 0.0) {
+            out->point = rf_vec3_add(pr->u.sphere.center, rf_vec3_scale(v, pr->u.sphere.radius / len));
+            double sc = max_abs3(pr->u.sphere.center) + pr->u.sphere.radius;
+            out->scale = fmax(max_abs3(out->point), sc);
+        }
+    } else if (!q.instanced && q.item.sub >= 0 && (pr->type == RF_PRIM_TRIANGLE || pr->type == RF_PRIM_POLYGON)) {
+        RfTriangle tri = item_triangle(t, q.item);
+        out->point = rf_vec3_add(rf_vec3_add(rf_vec3_scale(tri.p1, q.hit.l[0]), rf_vec3_scale(tri.p2, q.hit.l[1])),
+                                 rf_vec3_scale(tri.p3, q.hit.l[2]));
+        out->scale = fmax(max_abs3(tri.p1), fmax(max_abs3(tri.p2), max_abs3(tri.p3)));
+    } else if (!q.instanced && pr->type == RF_PRIM_PLANE) {
+        RfVec3 n = pr->u.plane.normal; /* any length */
+        double nn = rf_vec3_dot(n, n);
+        out->point = rf_vec3_sub(out->point, rf_vec3_scale(n, (rf_vec3_dot(n, out->point) - pr->u.plane.offset) / nn));
+        out->scale = fmax(max_abs3(out->point), fabs(pr->u.plane.offset) / sqrt(nn));
+    }
+    if (pr->type == RF_PRIM_CONE)
         out->scale *= RF_RAY_OFFSET_CONE;
     if (q.instanced)
         out->scale *= RF_RAY_OFFSET_INSTANCE;
