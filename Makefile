@@ -43,7 +43,7 @@ TEST_SRC := $(wildcard tests/*.c)
 # the comparator (issue 5): OpenGL through OSMesa, linked into refray-raster and the tests only
 RASTER_SRC := $(filter-out compare/verify% compare/mesh_bench.c,$(wildcard compare/*.c))
 RASTER_LIB_SRC := $(filter-out compare/raster_main.c,$(RASTER_SRC))
-OSMESA_LIBS = $(shell pkg-config --libs osmesa 2>/dev/null || echo -lOSMesa)
+OSMESA_LIBS = $(shell pkg-config --libs osmesa 2>/dev/null || echo -lOSMesa) $(shell pkg-config --libs egl 2>/dev/null || echo -lEGL)
 obj = $(patsubst %.c,$(BUILD)/obj/%.o,$(1))
 # the CGAL verifier (issue 7, docs/verify.md): C++17, its own binary refray-verify
 VERIFY_SRC := $(wildcard compare/verify*.cpp)

@@ -1,60 +1,54 @@
-/* The OSMesa back end of gl_context.h: Mesa's software context (llvmpipe on Debian 12), no
+/* The OSMesa back end (gl_backend.h): Mesa's software context (llvmpipe on Debian 12), no
  * display needed. */
-#include "gl_context.h"
-
 #include <stdio.h>
 #include <stdlib.h>
 
 #include <GL/osmesa.h>
 
-struct RfGlContext {
+#include "gl_backend.h"
+
+typedef struct {
     OSMesaContext ctx;
     unsigned char surface[4]; /* 1 x 1 RGBA: OSMesa needs a buffer; we draw into FBOs */
-};
+} Osmesa;
 
-RfStatus rf_gl_context_create(RfGlContext **out, char *err, size_t errsz)
+static void *osmesa_create(char *err, size_t errsz)
 {
     const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0,
                            OSMESA_PROFILE, OSMESA_CORE_PROFILE,
                            OSMESA_CONTEXT_MAJOR_VERSION, 4, OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
-    RfGlContext *c = calloc(1, sizeof *c);
-    *out = NULL;
+    Osmesa *c = calloc(1, sizeof *c);
     if (!c) {
-        snprintf(err, errsz, "out of memory");
-        return RF_ERR_NOMEM;
+        snprintf(err, errsz, "OSMesa: out of memory");
+        return NULL;
     }
     c->ctx = OSMesaCreateContextAttribs(attribs, NULL);
     if (!c->ctx) {
         snprintf(err, errsz, "OSMesa: cannot create an OpenGL 4.5 core context");
         free(c);
-        return RF_ERR_DOMAIN;
+        return NULL;
     }
     if (!OSMesaMakeCurrent(c->ctx, c->surface, GL_UNSIGNED_BYTE, 1, 1)) {
         snprintf(err, errsz, "OSMesa: cannot make the context current");
         OSMesaDestroyContext(c->ctx);
         free(c);
-        return RF_ERR_DOMAIN;
+        return NULL;
     }
-    *out = c;
-    return RF_OK;
+    return c;
 }
 
-RfGlProc rf_gl_context_proc(void *ctx, const char *name)
+static RfGlProc osmesa_proc(void *impl, const char *name)
 {
-    (void)ctx;
+    (void)impl;
     return (RfGlProc)OSMesaGetProcAddress(name);
 }
 
-void rf_gl_context_destroy(RfGlContext *c)
+static void osmesa_destroy(void *impl)
 {
-    if (!c)
-        return;
+    Osmesa *c = impl;
     OSMesaMakeCurrent(NULL, NULL, 0, 0, 0);
     OSMesaDestroyContext(c->ctx);
     free(c);
 }
 
-const char *rf_gl_context_backend(void)
-{
-    return "osmesa";
-}
+const RfGlBackendOps rf_gl_osmesa_ops = {"osmesa", osmesa_create, osmesa_proc, osmesa_destroy};

@@ -15,15 +15,17 @@ static void usage(FILE *out)
     fprintf(out,
             "usage: refray-raster SCENE -o OUT.exr [--depth-out DEPTH.exr] [--png OUT.png]\n"
             "                     [--mode phong|gouraud|flat] [--width W] [--height H]\n"
-            "                     [--gamma G | --srgb] [--nff-fov centres|edges]\n"
-            "  OpenGL 4.5 core (offscreen, %s) rasterization of the scene with the tracer's --local\n"
+            "                     [--gamma G | --srgb] [--nff-fov centres|edges] [--gl auto|osmesa|egl]\n"
+            "  OpenGL 4.5 core (offscreen) rasterization of the scene with the tracer's --local\n"
             "  shading: the image `refray render --local` must reproduce (docs/compare.md).\n"
             "  -o           linear RGB OpenEXR (32-bit float)\n"
             "  --depth-out  linear eye-space depth (distance along the view axis), +inf = background\n"
             "  --mode       phong (per pixel, default); gouraud and flat shade polygons per vertex /\n"
             "               per face (teaching); spheres, cones and planes are always per pixel\n"
-            "exit: 0 ok, 1 error, 2 usage\n",
-            rf_gl_context_backend());
+            "  --gl         the headless GL: osmesa (Mesa's off-screen library), egl (Mesa's\n"
+            "               surfaceless EGL, OSMesa's successor) or auto (default: osmesa, else egl);\n"
+            "               both give the same image\n"
+            "exit: 0 ok, 1 error, 2 usage\n");
 }
 
 
@@ -33,6 +35,7 @@ int main(int argc, char **argv)
     RfRasterOptions opt = {0, 0, RF_SHADE_PHONG};
     RfLoadOptions lopt = rf_load_options_default();
     RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
+    int gl = RF_GL_AUTO;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int ok = 1, shared, used;
@@ -59,6 +62,8 @@ int main(int argc, char **argv)
                 opt.mode = RF_SHADE_FLAT;
             else
                 ok = 0;
+        } else if (strcmp(a, "--gl") == 0 && v) {
+            ok = (gl = rf_gl_backend_parse(v)) >= 0, i++;
         } else if ((shared = rf_arg_shared(a, v, &lopt, &popt, &used)) != 0) {
             ok = shared > 0, i += used - 1;
         } else if (a[0] != '-' && !scene_path) {
@@ -90,13 +95,14 @@ int main(int argc, char **argv)
     }
     RfGlContext *ctx = NULL;
     RfImage img, depth;
-    if (rf_gl_context_create(&ctx, err, sizeof err) != RF_OK) {
+    if (rf_gl_context_create((RfGlBackend)gl, &ctx, err, sizeof err) != RF_OK) {
         fprintf(stderr, "refray-raster: %s\n", err);
         rf_scene_free(&scene);
         return 1;
     }
     RfStatus st = rf_raster_render(&scene, &opt, rf_gl_context_proc, ctx, &img, depth_out ? &depth : NULL,
                                    err, sizeof err);
+    const char *backend = rf_gl_context_backend(ctx);
     rf_gl_context_destroy(ctx);
     rf_scene_free(&scene);
     if (st != RF_OK) {
@@ -106,7 +112,7 @@ int main(int argc, char **argv)
     static const char *modes[] = {"phong", "gouraud", "flat"};
     char settings[128];
     snprintf(settings, sizeof settings, "%dx%d, OpenGL 4.5 core (%s), %s shading", img.width, img.height,
-             rf_gl_context_backend(), modes[opt.mode]);
+             backend, modes[opt.mode]);
     RfImageAttr attrs[] = {{"refray:version", RF_VERSION}, {"refray:scene", scene_path},
                            {"refray:renderer", "refray-raster"}, {"refray:settings", settings}};
     int rc = 0;

@@ -78,7 +78,7 @@ ROW
 <a href=\"exr/$n.tracer.exr\">tracer EXR</a>, <a href=\"exr/$n.raster.exr\">raster EXR</a>, depth:
 <a href=\"exr/$n.tracer-depth.exr\">tracer</a>, <a href=\"exr/$n.raster-depth.exr\">raster</a></p>"
         echo "<div class=\"imgs\">"
-        for k in "tracer:refray render --local" "raster:refray-raster (OpenGL, OSMesa)" "heat:|raster &minus; tracer| (grey: silhouettes)" "depth:depth |&Delta;z|/z (magenta: coverage differs)"; do
+        for k in "tracer:refray render --local" "raster:refray-raster (OpenGL, OSMesa or EGL)" "heat:|raster &minus; tracer| (grey: silhouettes)" "depth:depth |&Delta;z|/z (magenta: coverage differs)"; do
             echo "<figure><img src=\"img/$n.${k%%:*}.png\" alt=\"$n ${k%%:*}\"><figcaption>${k#*:}</figcaption></figure>"
         done
         echo "</div><table class=\"m\"><tr><th></th><th>pixels</th><th>max abs</th><th>mean abs</th><th>RMSE</th><th>PSNR</th><th>relMSE</th><th>&gt; 1/255</th><th>&gt; fail</th></tr>"
@@ -109,7 +109,7 @@ section { border-top: 2px solid #ddd; margin-top: 1.5em; } .src { color: #555; }
 <p>$passed of $total scenes pass. Accuracy goal (issue 5), away from silhouettes: mean absolute
 difference &le; 1e-4 and &ge; 99.9 % of pixels within 1/255. Each image is the tracer's
 <code>refray render --local</code> (primary rays, local Phong, no shadows, reflection or refraction)
-and <code>refray-raster</code> (OpenGL 4.5 core through OSMesa, float framebuffer), compared by
+and <code>refray-raster</code> (OpenGL 4.5 core through OSMesa or surfaceless EGL, float framebuffer), compared by
 <code>refray diff</code> on linear RGB. Silhouettes are the pixels where either depth image is
 discontinuous (docs/compare.md); they are reported but not judged. Generated $(date -u '+%Y-%m-%d %H:%M UTC') in $elapsed s.</p>
 <table><tr><th>scene</th><th>size</th><th>verdict</th><th>mean abs</th><th>within 1/255</th><th>max abs</th><th>silhouettes</th><th>coverage &ne;</th><th>depth max rel</th><th>mean abs (all px)</th><th>time tracer / raster (s)</th></tr>

@@ -47,12 +47,12 @@ if [ "${1:-}" = bench ]; then
     fi
     exit 0
 fi
-PACKAGES="build-essential pkg-config libcjson-dev libpng-dev libopenexr-dev libosmesa6-dev \
+PACKAGES="build-essential pkg-config libcjson-dev libpng-dev libopenexr-dev libosmesa6-dev libegl-dev libegl-mesa0 \
 libglfw3-dev libcgal-dev libgmp-dev libmpfr-dev libcairo2-dev libfontconfig-dev zlib1g-dev"
 
 # pkg-config modules that the build links against; CGAL is header-only, so its header is checked.
 missing() {
-    for m in libcjson libpng OpenEXR osmesa glfw3 cairo fontconfig zlib; do
+    for m in libcjson libpng OpenEXR osmesa egl glfw3 cairo fontconfig zlib; do
         pkg-config --exists "$m" 2>/dev/null || echo "$m"
     done
     [ -f /usr/include/CGAL/version.h ] || echo "CGAL"
