@@ -41,7 +41,7 @@ LIB_SRC  := $(wildcard src/core/*.c src/color/*.c src/geom/*.c src/scene/*.c src
 CLI_SRC  := $(wildcard src/cli/*.c)
 TEST_SRC := $(wildcard tests/*.c)
 # the comparator (issue 5): OpenGL through OSMesa, linked into refray-raster and the tests only
-RASTER_SRC := $(filter-out compare/verify% compare/mesh_bench.c,$(wildcard compare/*.c))
+RASTER_SRC := $(filter-out compare/verify% compare/mesh_bench.c compare/view_main.c,$(wildcard compare/*.c))
 RASTER_LIB_SRC := $(filter-out compare/raster_main.c,$(RASTER_SRC))
 OSMESA_LIBS = $(shell pkg-config --libs osmesa 2>/dev/null || echo -lOSMesa) $(shell pkg-config --libs egl 2>/dev/null || echo -lEGL)
 obj = $(patsubst %.c,$(BUILD)/obj/%.o,$(1))
@@ -63,9 +63,11 @@ BIN  := $(BUILD)/refray
 TEST := $(BUILD)/refray-tests
 RASTER := $(BUILD)/refray-raster
 VERIFY := $(BUILD)/refray-verify
+VIEW := $(BUILD)/refray-view
+GLFW_LIBS = $(shell pkg-config --libs glfw3 2>/dev/null || echo -lglfw)
 
 .PHONY: all test demo bench bench-run install clean report stress mutate FORCE
-all: $(LIB) $(BIN) $(RASTER) $(VERIFY)
+all: $(LIB) $(BIN) $(RASTER) $(VERIFY) $(VIEW)
 
 # Dependencies: checked (and installed) once per build folder, then the flags are cached.
 NO_CONFIG_GOALS := clean
@@ -111,6 +113,11 @@ $(RASTER): $(call obj,$(RASTER_SRC)) $(BUILD)/obj/src/cli/args.o $(LIB)
 	@$(if $(Q),echo "  LINK    $@")
 	$(Q)$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL) $(OSMESA_LIBS)
 
+# refray-view: the GLFW viewer (compare/view_main.c), with the rasterizer for its GL views
+$(VIEW): $(call obj,compare/view_main.c $(RASTER_LIB_SRC)) $(BUILD)/obj/src/cli/args.o $(LIB)
+	@$(if $(Q),echo "  LINK    $@")
+	$(Q)$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL) $(OSMESA_LIBS) $(GLFW_LIBS)
+
 # relinked when Embree appears or goes (the stamp's name says which)
 $(BUILD)/gen/embree-$(if $(EMBREE),yes,no):
 	@mkdir -p $(dir $@) && rm -f $(BUILD)/gen/embree-* && touch $@
@@ -133,7 +140,7 @@ $(VERIFY): $(call cxxobj,$(VERIFY_SRC)) $(LIB)
 	@$(if $(Q),echo "  LINK    $@")
 	$(Q)$(CXX) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL) -lgmp -lmpfr
 
-test: $(TEST) $(BIN) $(RASTER) $(VERIFY)
+test: $(TEST) $(BIN) $(RASTER) $(VERIFY) $(VIEW)
 	LSAN_OPTIONS=suppressions=$(CURDIR)/compare/lsan.supp:print_suppressions=0 RF_BIN=$(BIN) RF_VERIFY=$(VERIFY) RF_TEST_DATA=tests/data $(TEST)
 
 # the numerical stress suite (issue 7, docs/verify.md): every verifier class, the acne and leak
@@ -172,6 +179,7 @@ install: all
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/refray
 	install -m 755 $(RASTER) $(DESTDIR)$(PREFIX)/bin/refray-raster
 	install -m 755 $(VERIFY) $(DESTDIR)$(PREFIX)/bin/refray-verify
+	install -m 755 $(VIEW) $(DESTDIR)$(PREFIX)/bin/refray-view
 	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/librefray.a
 	install -m 644 include/refray/*.h $(DESTDIR)$(PREFIX)/include/refray/
 

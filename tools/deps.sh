@@ -8,7 +8,8 @@
 #                               installed as root, else the line is printed; never fails)
 #        tools/deps.sh test    (what some tests use when present, optional: POV-Ray for the
 #                               independent full-render check, GNU parallel and Slurm's sbatch for
-#                               the farm examples, python3 for tools/nff2pov.py; as `bench`)
+#                               the farm examples, python3 for tools/nff2pov.py, Xvfb for the
+#                               viewer's headless test; as `bench`)
 set -u
 if [ "${1:-}" = test ]; then
     m=""
@@ -16,6 +17,8 @@ if [ "${1:-}" = test ]; then
     command -v parallel >/dev/null 2>&1 || m="$m parallel"
     command -v sbatch >/dev/null 2>&1 || m="$m slurm-client"
     command -v python3 >/dev/null 2>&1 || m="$m python3"
+    command -v xvfb-run >/dev/null 2>&1 || m="$m xvfb xauth"
+    command -v xdotool >/dev/null 2>&1 || m="$m xdotool"
     [ -z "$m" ] && exit 0
     if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
         echo "refray tests: installing what some tests use:$m" >&2
