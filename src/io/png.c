@@ -191,6 +191,11 @@ static RfStatus png_read_impl(const char *path, RfPngOptions decode, RfImage *im
                           pe->status == RF_ERR_NOMEM ? "cannot read PNG" : "corrupt or truncated PNG", pe->msg);
     }
     png_init_io(png, fp);
+    /* No chunk may make libpng allocate more than 16 MiB, and the suggested palettes (sPLT),
+     * which refray never uses, are skipped: a 119-byte file asked libpng for 2 GiB through a
+     * malformed sPLT (found by fuzzing, tests/data/fuzz/png/). */
+    png_set_chunk_malloc_max(png, (png_alloc_size_t)16 << 20);
+    png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_NEVER, (png_const_bytep) "sPLT", 1);
     png_read_info(png, info);
     color_type = png_get_color_type(png, info);
     depth = png_get_bit_depth(png, info);
