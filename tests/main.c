@@ -31,6 +31,7 @@ extern const RfTest rf_tests_fuzz_regress[];
 extern const RfTest rf_tests_povray[];
 extern const RfTest rf_tests_farm[];
 extern const RfTest rf_tests_view[];
+extern const RfTest rf_tests_trace[];
 
 static const RfTest *const suites[] = {
     rf_tests_vecmat, rf_tests_geometry, rf_tests_transform, rf_tests_formula, rf_tests_cli,
@@ -48,6 +49,7 @@ static const RfTest *const suites[] = {
     rf_tests_povray,
     rf_tests_farm,
     rf_tests_view,
+    rf_tests_trace,
 };
 
 int rf_test_failed_checks;

@@ -26,6 +26,10 @@ typedef struct {
 
 RfTracerOptions rf_tracer_options_default(void);
 
+/* `refray trace`: every step of one pixel's rays (RfTraceEvent, below RfSurfaceHit). */
+typedef struct RfTraceEvent RfTraceEvent;
+typedef void (*RfTraceFn)(void *ctx, const RfTraceEvent *e);
+
 typedef struct {
     int width, height;   /* 0: the scene's */
     int max_depth;       /* 0: the scene's; the primary ray is depth 1 */
@@ -74,6 +78,10 @@ typedef struct {
     const unsigned char *skip;
     const RfImage *resume_from;
     const volatile int *cancel;
+    /* refray trace: with a 1 x 1 crop, every step of that pixel's rays goes to trace (on one
+     * thread); the image is the same as without (RF_ERR_DOMAIN for a larger window) */
+    RfTraceFn trace;
+    void *trace_ctx;
 } RfRenderOptions;
 
 /* The side of a render's tiles, and their number in a w x h window. */
@@ -149,6 +157,36 @@ typedef struct {
                                hit point and the ray's origin, times RF_RAY_OFFSET_CONE/_INSTANCE */
 } RfSurfaceHit;
 int rf_tracer_intersect(const RfTracer *tracer, RfRay ray, double t_min, double t_max, RfSurfaceHit *hit);
+
+/* `refray trace`: every step of one pixel's rays, reported by the render kernels themselves as
+ * they render it (RfRenderOptions.trace), so the trace is the renderer's own arithmetic. */
+typedef enum {
+    RF_TRACE_SAMPLE,    /* a camera sample: its image position and primary ray */
+    RF_TRACE_HIT,       /* the nearest hit of a ray (hit) */
+    RF_TRACE_MISS,      /* a ray that meets nothing: color = the background */
+    RF_TRACE_LIGHT,     /* one light (sample) at a hit: L, its intensity there, the shadow ray, the terms */
+    RF_TRACE_SECONDARY, /* a mirror or refracted ray leaving a hit: Snell and Fresnel numbers, weight */
+    RF_TRACE_RESULT,    /* the colour a ray returns: local = emission + ambient + the light terms */
+    RF_TRACE_PIXEL      /* the pixel's value, as stored in the image */
+} RfTraceKind;
+
+struct RfTraceEvent {
+    RfTraceKind kind;
+    int depth;                /* the ray's depth (1: primary) */
+    int sample, samples;      /* the camera sample k of n */
+    double px, py;            /* SAMPLE: image position in pixel units (y down) */
+    RfRay ray;                /* SAMPLE: the primary ray; SECONDARY: the new ray */
+    const RfSurfaceHit *hit;  /* HIT (valid during the call) */
+    int light, light_sample;  /* LIGHT: the light's index, the area light's sample (-1: none) */
+    RfVec3 l;                 /* LIGHT: unit direction to the light */
+    double distance, n_dot_l; /* LIGHT */
+    int visible;              /* LIGHT: 1 lit; 0 in shadow; -1 the light is behind the surface */
+    RfRgb intensity, diffuse, specular; /* LIGHT: I at the point, kd I max(0, N.L), ks I max(0, R.V)^n */
+    int refracted, tir, fresnel; /* SECONDARY: refracted (else mirror); total internal reflection; exact Fresnel */
+    double eta_i, eta_t, cos_i, fr, ft; /* SECONDARY: §3.8.1 */
+    RfRgb weight;             /* SECONDARY: the weight of the new ray's colour */
+    RfRgb color, local;       /* RESULT, MISS, PIXEL: the colour; RESULT: its local part */
+};
 /* §3.10 motion blur: the moving instances' transforms at one time, made once per sample path
  * (one state per thread). The _at queries see moving instances where they are at the state's
  * time; without a state (NULL, and the functions without _at) at their first keyframe. */

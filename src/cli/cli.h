@@ -10,6 +10,7 @@ int rf_cmd_metamers(int argc, char **argv);
 int rf_cmd_info(int argc, char **argv);
 int rf_cmd_render(int argc, char **argv);
 int rf_cmd_merge(int argc, char **argv);
+int rf_cmd_trace(int argc, char **argv);
 int rf_cmd_diff(int argc, char **argv);
 int rf_cmd_bench(int argc, char **argv);
 

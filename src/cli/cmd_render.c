@@ -187,44 +187,10 @@ int rf_cmd_render(int argc, char **argv)
             depth_out = v, i++;
         } else if (strcmp(a, "--png") == 0 && v) {
             png = v, i++;
-        } else if (strcmp(a, "--width") == 0 && v) {
-            ok = rf_arg_int(v, 1, 65536, &opt.width), i++;
-        } else if (strcmp(a, "--height") == 0 && v) {
-            ok = rf_arg_int(v, 1, 65536, &opt.height), i++;
-        } else if (strcmp(a, "--samples") == 0 && v) {
-            ok = rf_arg_int(v, 1, 1 << 20, &opt.samples), i++;
-        } else if (strcmp(a, "--depth") == 0 && v) {
-            ok = rf_arg_int(v, 1, 1000, &opt.max_depth), i++;
-        } else if (strcmp(a, "--threads") == 0 && v) {
-            ok = rf_arg_int(v, 1, 1024, &opt.threads), i++;
-        } else if (strcmp(a, "--seed") == 0 && v) {
-            int s = 0;
-            ok = rf_arg_int(v, 0, 2147483647, &s), i++;
-            opt.seed = (uint64_t)s;
+        } else if ((shared = rf_arg_render(a, v, &opt, &used)) != 0) {
+            ok = shared > 0, i += used - 1;
         } else if ((shared = rf_arg_shared(a, v, &lopt, &popt, &used)) != 0) {
             ok = shared > 0, i += used - 1;
-        } else if (strcmp(a, "--sampler") == 0 && v) {
-            if (strcmp(v, "adaptive") == 0)
-                opt.adaptive = 1;
-            else
-                ok = (opt.sampler = rf_sampler_parse(v)) >= 0, opt.adaptive = 0;
-            i++;
-        } else if (strcmp(a, "--adaptive-threshold") == 0 && v) {
-            ok = rf_arg_nonneg(v, &opt.adaptive_threshold), i++;
-        } else if (strcmp(a, "--adaptive-depth") == 0 && v) {
-            ok = rf_arg_int(v, 0, 8, &opt.adaptive_depth), i++;
-        } else if (strcmp(a, "--filter") == 0 && v) {
-            ok = (opt.filter = rf_filter_parse(v)) >= 0, i++;
-        } else if (strcmp(a, "--filter-radius") == 0 && v) {
-            ok = rf_arg_nonneg(v, &opt.filter_radius) && opt.filter_radius > 0.0 && opt.filter_radius <= 16.0, i++;
-        } else if (strcmp(a, "--aperture") == 0 && v) {
-            ok = rf_arg_nonneg(v, &opt.aperture), i++;
-        } else if (strcmp(a, "--focus") == 0 && v) {
-            ok = rf_arg_nonneg(v, &opt.focus) && opt.focus > 0.0, i++;
-        } else if (strcmp(a, "--light-samples") == 0 && v) {
-            ok = rf_arg_int(v, 1, 1 << 16, &opt.light_samples), i++;
-        } else if (strcmp(a, "--kernel") == 0 && v) {
-            ok = strcmp(v, "auto") == 0 || (opt.kernel = rf_kernel_parse(v)) != 0, i++;
         } else if (strcmp(a, "--crop") == 0 && v) {
             int n = -1;
             ok = sscanf(v, "%d,%d,%d,%d%n", &opt.crop.x0, &opt.crop.y0, &opt.crop.x1, &opt.crop.y1, &n) == 4 &&
@@ -241,10 +207,6 @@ int rf_cmd_render(int argc, char **argv)
             ok = rf_arg_nonneg(v, &checkpoint_every), i++;
         } else if (strcmp(a, "--resume") == 0 && v) {
             resume = v, i++;
-        } else if (strcmp(a, "--preview") == 0) {
-            opt.preview = 1;
-        } else if (strcmp(a, "--local") == 0) {
-            opt.local_only = 1;
         } else if (strcmp(a, "--quiet") == 0) {
             quiet = 1;
         } else if (a[0] != '-' && !scene_path) {

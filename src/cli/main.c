@@ -15,6 +15,7 @@ typedef struct {
 static const Command commands[] = {
     {"render", rf_cmd_render, "ray trace a scene (.nff, .rf, .obj) to a linear EXR and a PNG (§3)"},
     {"merge", rf_cmd_merge, "put the tiles of one render (render --crop, --tiles) together, checked"},
+    {"trace", rf_cmd_trace, "every ray of one pixel as the renderer computes it: hits, lights, Phong terms, Fresnel"},
     {"formula", rf_cmd_formula, "compute a formula of the lecture script (list, ID key=value, --batch)"},
     {"chromaticity", rf_cmd_chromaticity, "draw the CIE 1931 xy chromaticity diagram (PNG/SVG, §1.5)"},
     {"metamers", rf_cmd_metamers, "two different spectra with the same XYZ and LMS (§1.3.1)"},

@@ -45,6 +45,8 @@ static inline uint32_t rf_kernel_dim(int depth, int slot)
 typedef struct {
     char text[512];
     size_t len;
+    RfTraceFn trace; /* refray trace: every step as an event (NULL: the text only) */
+    void *trace_ctx;
 } RfPathLog;
 
 /* Where a sample path is: its pixel, camera sample k of n, the pattern, its time. */
@@ -96,6 +98,7 @@ typedef struct {
                                        centres_x0, centres_y0, centres_w wide: the crop and one
                                        pixel around it */
     int centres_x0, centres_y0, centres_w;
+    RfPathLog *trace_log;           /* refray trace (a 1 x 1 crop): every sample logs here */
     RfImage *img;                   /* the crop, whose top left pixel is (img_x0, img_y0) */
     int img_x0, img_y0;
     RfRenderStats *per_thread;      /* one per thread: no sharing on the hot path */

@@ -10,6 +10,12 @@
  * (tests/test_kernels.c renders every shipped scene both ways). */
 
 #define RF_ON(part) ((RF_KPARTS & (part)) != 0)
+/* refray trace's events come from the general kernel only (rf_render picks it for a trace), so
+ * the specialised kernels carry no trace code at all */
+#ifndef RF_TRACE_ON
+#define RF_TRACE_ON(ps) (RF_KPARTS == RF_K_ALL && (ps)->log && (ps)->log->trace)
+#define RF_TRACE_ON_JOB(job) (RF_KPARTS == RF_K_ALL && (job)->trace_log && (job)->trace_log->trace)
+#endif
 
 static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, int depth, double weight,
                              RfRenderStats *st, uint64_t *shadow_cache, const RfPathSample *ps);
@@ -18,12 +24,22 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
  * shadows) and the diffuse and specular terms. 0 when the light does not reach the point. */
 static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHit *h, const RfMaterial *m,
                                        RfVec3 n, RfVec3 v, const RfLightSample *ls, RfRenderStats *st,
-                                       uint64_t *cache, const RfPathSample *ps, RfRgb *term)
+                                       uint64_t *cache, const RfPathSample *ps, int li, int j, int depth, RfRgb *term)
 {
+    RfTraceEvent ev; /* refray trace only */
+    if (RF_TRACE_ON(ps)) {
+        memset(&ev, 0, sizeof ev);
+        ev.kind = RF_TRACE_LIGHT, ev.depth = depth, ev.sample = (int)ps->k, ev.samples = (int)ps->n;
+        ev.light = li, ev.light_sample = j, ev.l = ls->l, ev.distance = ls->distance, ev.intensity = ls->i;
+        ev.n_dot_l = rf_vec3_dot(n, ls->l), ev.visible = -1;
+    }
     if (rf_kernel_rgb_max(ls->i) <= 0.0)
         return 0;
-    if (rf_vec3_dot(h->normal, ls->l) <= 0.0) /* the light is behind the surface */
+    if (rf_vec3_dot(h->normal, ls->l) <= 0.0) { /* the light is behind the surface */
+        if (RF_TRACE_ON(ps))
+            ps->log->trace(ps->log->trace_ctx, &ev);
         return 0;
+    }
     if (RF_ON(RF_K_SHADOW) && !job->local_only) {
         RfRay sr = rf_ray(rf_hit_offset_origin(h, ls->l, job->fixed_offset), ls->l);
         double dist = isinf(ls->distance) ? HUGE_VAL
@@ -31,8 +47,13 @@ static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHi
                                                 rf_vec3_scale(ls->l, ls->distance)), sr.origin));
         st->shadow_rays++;
         if (RF_ON(RF_K_MOTION) ? rf_tracer_occluded_cached_at(job->tracer, sr, ps->motion, 0.0, dist, cache)
-                               : rf_tracer_occluded_cached(job->tracer, sr, 0.0, dist, cache))
+                               : rf_tracer_occluded_cached(job->tracer, sr, 0.0, dist, cache)) {
+            if (RF_TRACE_ON(ps)) {
+                ev.visible = 0;
+                ps->log->trace(ps->log->trace_ctx, &ev);
+            }
             return 0;
+        }
     }
     /* §3.6.2 Phong, as rf_phong: only positive scalar products contribute */
     double nl = rf_vec3_dot(n, ls->l);
@@ -44,8 +65,14 @@ static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHi
         double spec = nl > 0.0 && rv > 0.0 ? pow(rv, m->shininess) : 0.0;
         RfRgb specular = rf_rgb_scale(rf_rgb_mul(m->ks, ls->i), spec);
         *term = rf_rgb_add(diffuse, specular);
+        if (RF_TRACE_ON(ps))
+            ev.specular = specular;
     } else {
         *term = diffuse;
+    }
+    if (RF_TRACE_ON(ps)) {
+        ev.visible = 1, ev.diffuse = diffuse;
+        ps->log->trace(ps->log->trace_ctx, &ev);
     }
     return 1;
 }
@@ -131,6 +158,19 @@ static RfRgb RF_KNAME(secondary)(const RfKernelJob *job, const RfSurfaceHit *h, 
     return rf_rgb_add(color, rf_rgb_mul(w, RF_KNAME(trace)(job, ray, 0.0, depth + 1, weight * wmax, st, shadow_cache, ps)));
 }
 
+/* refray trace: reports the colour a ray returns (and its local part); returns it */
+static inline RfRgb RF_KNAME(traced)(const RfPathSample *ps, int depth, RfRgb local, RfRgb color)
+{
+    if (RF_TRACE_ON(ps)) {
+        RfTraceEvent ev;
+        memset(&ev, 0, sizeof ev);
+        ev.kind = RF_TRACE_RESULT, ev.depth = depth, ev.sample = (int)ps->k, ev.samples = (int)ps->n;
+        ev.local = local, ev.color = color;
+        ps->log->trace(ps->log->trace_ctx, &ev);
+    }
+    return color;
+}
+
 /* The colour seen along ray (hits in [t_min, inf)); depth 1 is the primary ray, weight the
  * product of the reflection/transmission weights on the way here. */
 static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, int depth, double weight,
@@ -141,10 +181,23 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
                             : rf_tracer_intersect(job->tracer, ray, t_min, HUGE_VAL, &h)) < 0) {
         if (ps->log)
             rf_kernel_log(ps->log, " -> nothing (background)");
+        if (RF_TRACE_ON(ps)) {
+            RfTraceEvent ev;
+            memset(&ev, 0, sizeof ev);
+            ev.kind = RF_TRACE_MISS, ev.depth = depth, ev.sample = (int)ps->k, ev.samples = (int)ps->n;
+            ev.color = job->background;
+            ps->log->trace(ps->log->trace_ctx, &ev);
+        }
         return job->background;
     }
     if (ps->log)
         rf_kernel_log_hit(ps->log, job->scene, &h);
+    if (RF_TRACE_ON(ps)) {
+        RfTraceEvent ev;
+        memset(&ev, 0, sizeof ev);
+        ev.kind = RF_TRACE_HIT, ev.depth = depth, ev.sample = (int)ps->k, ev.samples = (int)ps->n, ev.hit = &h;
+        ps->log->trace(ps->log->trace_ctx, &ev);
+    }
     const RfMaterial *m = &job->materials[h.material];
     RfVec3 v = rf_vec3_neg(rf_vec3_normalize(ray.dir));
     RfVec3 n = h.shading_normal;
@@ -163,7 +216,7 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
         if (RF_ON(RF_K_AREA) && l->samples > 0) { /* an area light: its samples */
             for (int j = 0; j < l->samples; j++)
                 if (RF_KNAME(area_sample)(job, l, li, h.point, j, depth, ps, &ls) &&
-                    RF_KNAME(light_term)(job, &h, m, n, v, &ls, st, &shadow_cache[li], ps, &term))
+                    RF_KNAME(light_term)(job, &h, m, n, v, &ls, st, &shadow_cache[li], ps, li, j, depth, &term))
                     color = rf_rgb_add(color, term);
             continue;
         }
@@ -184,15 +237,16 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
                        ? rf_rgb_scale(l->intensity, 1.0 / (d * d))
                        : l->intensity;
         }
-        if (RF_KNAME(light_term)(job, &h, m, n, v, &ls, st, &shadow_cache[li], ps, &term))
+        if (RF_KNAME(light_term)(job, &h, m, n, v, &ls, st, &shadow_cache[li], ps, li, -1, depth, &term))
             color = rf_rgb_add(color, term);
     }
+    RfRgb local = color; /* for the trace */
     if (!RF_ON(RF_K_SECONDARY) || job->local_only || depth >= job->max_depth)
-        return color;
+        return RF_KNAME(traced)(ps, depth, local, color);
     RfRgb kr = m->kr, kt = m->kt, zero = rf_rgb(0, 0, 0);
     int reflects = rf_kernel_rgb_max(kr) > 0.0, transmits = rf_kernel_rgb_max(kt) > 0.0;
     if (!reflects && !transmits)
-        return color;
+        return RF_KNAME(traced)(ps, depth, local, color);
     /* §3.8.1: entering through the front (outside) goes from air (1) into the material */
     double eta_i = h.front ? 1.0 : m->ior, eta_t = h.front ? m->ior : 1.0;
     double vn = rf_vec3_dot(v, n);
@@ -214,15 +268,43 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
     }
     double mr = rf_kernel_rgb_max(wr), mt = rf_kernel_rgb_max(wt);
     int glossy = RF_ON(RF_K_GLOSSY) && m->gloss > 0.0;
+    RfTraceEvent ev; /* refray trace only: the §3.8.1 numbers of the secondary rays */
+    if (RF_TRACE_ON(ps)) {
+        memset(&ev, 0, sizeof ev);
+        ev.kind = RF_TRACE_SECONDARY, ev.depth = depth, ev.sample = (int)ps->k, ev.samples = (int)ps->n;
+        ev.tir = transmits && !refracts, ev.fresnel = fresnel;
+        ev.eta_i = eta_i, ev.eta_t = eta_t, ev.cos_i = cos_i, ev.fr = fr, ev.ft = ft;
+    }
     if (mr > 0.0 && weight * mr >= job->min_contribution) {
         RfVec3 rdir = rf_reflect_dir(rf_vec3_neg(v), n);
+        if (RF_TRACE_ON(ps)) {
+            ev.refracted = 0, ev.weight = wr, ev.ray = rf_ray(rf_hit_offset_origin(&h, rdir, job->fixed_offset), rdir);
+            ps->log->trace(ps->log->trace_ctx, &ev);
+        }
         color = RF_KNAME(secondary)(job, &h, rdir, wr, mr, 0, glossy ? m->gloss : 0.0, depth, weight, st, shadow_cache, ps,
                                     color);
     }
-    if (refracts && mt > 0.0 && weight * mt >= job->min_contribution)
+    if (refracts && mt > 0.0 && weight * mt >= job->min_contribution) {
+        if (RF_TRACE_ON(ps)) {
+            ev.refracted = 1, ev.weight = wt, ev.ray = rf_ray(rf_hit_offset_origin(&h, tdir, job->fixed_offset), tdir);
+            ps->log->trace(ps->log->trace_ctx, &ev);
+        }
         color = RF_KNAME(secondary)(job, &h, tdir, wt, mt, 1, glossy ? m->gloss : 0.0, depth, weight, st, shadow_cache, ps,
                                     color);
-    return color;
+    }
+    return RF_KNAME(traced)(ps, depth, local, color);
+}
+
+/* refray trace: a camera sample's image position and primary ray */
+static inline void RF_KNAME(trace_sample)(const RfPathSample *ps, double px, double py, RfRay ray)
+{
+    if (RF_TRACE_ON(ps)) {
+        RfTraceEvent ev;
+        memset(&ev, 0, sizeof ev);
+        ev.kind = RF_TRACE_SAMPLE, ev.depth = 1, ev.sample = (int)ps->k, ev.samples = (int)ps->n;
+        ev.px = px, ev.py = py, ev.ray = ray;
+        ps->log->trace(ps->log->trace_ctx, &ev);
+    }
 }
 
 /* The primary ray's colour: the hither plane, the trace, the invalid-sample rule. */
@@ -262,6 +344,7 @@ static RfRgb RF_KNAME(camera_sample)(const RfKernelJob *job, double px, double p
         rf_motion_state_set(ps->motion, ps->time);
     }
     RfRay ray = rf_camera_ray(cam, px, py, lens[0], lens[1]);
+    RF_KNAME(trace_sample)(ps, px, py, ray);
     return RF_KNAME(camera_ray)(job, ray, ps, st, shadow_cache);
 }
 
@@ -278,7 +361,7 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
     for (int y = tile.y0; y < tile.y1; y++)
         for (int x = tile.x0; x < tile.x1; x++) {
             RfPathSample ps = {(uint64_t)y * (uint64_t)job->width + (uint64_t)x, 0, (uint32_t)n, job->sampler,
-                               job->shutter_open, job->motion ? job->motion[thread] : NULL, NULL};
+                               job->shutter_open, job->motion ? job->motion[thread] : NULL, job->trace_log};
             RfRgb sum = rf_rgb(0, 0, 0);
             if (n == 1) {
                 if (RF_ON(RF_K_LENS | RF_K_MOTION) && (cam->aperture_radius > 0.0 || job->moving)) {
@@ -286,6 +369,7 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
                 } else { /* the pixel centre: rf_camera_ray's plane point, computed per row and column */
                     RfVec3 c = rf_vec3(job->column_x[x], job->row_y[y], -cam->d);
                     RfRay ray = rf_ray(cam->eye, rf_vec3_normalize(rf_camera_to_world(cam, c)));
+                    RF_KNAME(trace_sample)(&ps, x + 0.5, y + 0.5, ray);
                     sum = RF_KNAME(camera_ray)(job, ray, &ps, st, shadow_cache);
                 }
             } else {
@@ -311,6 +395,8 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
                     sum = rf_rgb_scale(wsum_c, (double)n / wsum);
             }
             rf_kernel_store(job, st, x, y, rf_rgb(sum.r / n, sum.g / n, sum.b / n));
+            if (RF_TRACE_ON(&ps))
+                rf_kernel_trace_pixel(job, &ps, x, y);
         }
     return 0;
 }
@@ -324,7 +410,7 @@ static int RF_KNAME(adaptive_centres)(void *ctx, RfTile tile, int thread)
     for (int y = tile.y0; y < tile.y1; y++)
         for (int x = tile.x0; x < tile.x1; x++) {
             RfPathSample ps = {(uint64_t)y * (uint64_t)job->width + (uint64_t)x, 0, 1, RF_SAMPLER_RANDOM,
-                               job->shutter_open, job->motion ? job->motion[thread] : NULL, NULL};
+                               job->shutter_open, job->motion ? job->motion[thread] : NULL, job->trace_log};
             RfRgb c = RF_KNAME(camera_sample)(job, x + 0.5, y + 0.5, &ps, st, shadow_cache);
             job->centres[rf_kernel_centre(job, x, y)] = c;
         }
@@ -375,11 +461,15 @@ static int RF_KNAME(adaptive_refine)(void *ctx, RfTile tile, int thread)
                 contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[rf_kernel_centre(job, x, y + 1)]));
             if (job->adaptive_depth > 0 && contrast > job->adaptive_threshold) {
                 RfPathSample ps = {pixel, 0, 1, RF_SAMPLER_RANDOM, job->shutter_open,
-                                   job->motion ? job->motion[thread] : NULL, NULL};
+                                   job->motion ? job->motion[thread] : NULL, job->trace_log};
                 c = RF_KNAME(adaptive_square)(job, x, y, 1.0, 1, c, &ps, st, shadow_cache);
                 st->adaptive_pixels++;
             }
             rf_kernel_store(job, st, x, y, c);
+            if (RF_TRACE_ON_JOB(job)) {
+                RfPathSample ps = {pixel, 0, 1, RF_SAMPLER_RANDOM, job->shutter_open, NULL, job->trace_log};
+                rf_kernel_trace_pixel(job, &ps, x, y);
+            }
         }
     return 0;
 }

@@ -78,6 +78,17 @@ static inline size_t rf_kernel_centre(const RfKernelJob *job, int x, int y)
     return (size_t)(y - job->centres_y0) * (size_t)job->centres_w + (size_t)(x - job->centres_x0);
 }
 
+/* refray trace: the pixel's value as stored in the image */
+static void rf_kernel_trace_pixel(const RfKernelJob *job, const RfPathSample *ps, int x, int y)
+{
+    const float *px = job->img->data + ((size_t)(y - job->img_y0) * (size_t)job->img->width + (size_t)(x - job->img_x0)) * 3;
+    RfTraceEvent ev;
+    memset(&ev, 0, sizeof ev);
+    ev.kind = RF_TRACE_PIXEL, ev.samples = (int)ps->n;
+    ev.color = rf_rgb(px[0], px[1], px[2]);
+    ps->log->trace(ps->log->trace_ctx, &ev);
+}
+
 /* Appends to an explained path (kernel.h RfPathLog). */
 static void rf_kernel_log(RfPathLog *log, const char *fmt, ...)
 {

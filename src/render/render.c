@@ -279,6 +279,15 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
         return RF_ERR_DOMAIN;
     job->img_x0 = crop.x0;
     job->img_y0 = crop.y0;
+    RfPathLog trace_log; /* refray trace: one pixel, one thread */
+    if (opt->trace) {
+        if (crop_w != 1 || crop_h != 1)
+            return RF_ERR_DOMAIN;
+        memset(&trace_log, 0, sizeof trace_log);
+        trace_log.trace = opt->trace;
+        trace_log.trace_ctx = opt->trace_ctx;
+        job->trace_log = &trace_log;
+    }
     /* adaptive supersampling compares each pixel's centre with its 4 neighbours' */
     RfTile around = {crop.x0 > 0 ? crop.x0 - 1 : 0, crop.y0 > 0 ? crop.y0 - 1 : 0,
                      crop.x1 < job->width ? crop.x1 + 1 : crop.x1, crop.y1 < job->height ? crop.y1 + 1 : crop.y1, 0};
@@ -313,11 +322,12 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
         return st;
     job->hither = sc->hither;
     unsigned needed = needed_parts(scene, opt, &res);
-    const RfKernel *kernel = choose_kernel(needed, opt->kernel);
+    /* a trace runs the general kernel, the only one with the trace's events (the same image) */
+    const RfKernel *kernel = choose_kernel(needed, opt->trace ? RF_K_ALL : opt->kernel);
     if (!kernel) /* a kernel asked for that lacks a part the scene needs */
         return RF_ERR_DOMAIN;
     run.tile = res.adaptive ? kernel->adaptive_centres : kernel->tile;
-    int threads = opt->threads > 0 ? opt->threads : rf_cpu_count();
+    int threads = opt->trace ? 1 : opt->threads > 0 ? opt->threads : rf_cpu_count();
     job->per_thread = calloc((size_t)threads, sizeof *job->per_thread);
     RfKernelLight *lights = malloc(sizeof *lights * (scene->light_count + 1));
     double *column_x = malloc(sizeof *column_x * (size_t)job->width);
@@ -422,8 +432,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     if (st == RF_OK && stats->invalid.found) {
         /* the first invalid sample, traced again to name its path; a reference render fails */
         RfPathLog log;
-        log.len = 0;
-        log.text[0] = 0;
+        memset(&log, 0, sizeof log);
         uint64_t pixel = (uint64_t)stats->invalid.y * (uint64_t)job->width + (uint64_t)stats->invalid.x;
         kernel->explain(job, pixel, stats->invalid.sample, &log);
         snprintf(stats->invalid.path, sizeof stats->invalid.path, "%s", log.text);
