@@ -80,6 +80,23 @@ RfStatus rf_diff_heatmap(const RfImage *a, const RfImage *b, const unsigned char
 RfStatus rf_diff_depth_heatmap(const RfImage *da, const RfImage *db, const unsigned char *mask,
                                RfImage *out);
 
+/* A statistical test of two noisy renders (Mitsuba 3's recipe, shared/research/ecosystem.md):
+ * per pixel and channel z = (a - b) / sqrt(va + vb), va and vb the variances of the two pixel
+ * means (refray render --variance), and the two-sided p-value erfc(|z| / sqrt 2); a pixel's p is
+ * the smallest of its channels' times 3 (Bonferroni over the channels, at most 1). A pixel
+ * accepts when p > alpha_pixel = 1 - (1 - alpha)^(1 / pixels) (Sidak over the pixels); the test
+ * passes when at least `accept` of the pixels do (0.9975). A pixel with va + vb = 0 accepts when
+ * a = b exactly. pvalues (may be NULL) gets each pixel's p (one channel). */
+typedef struct {
+    long pixels, accepted;
+    double alpha_pixel;  /* the Sidak-corrected level */
+    double min_p;        /* the smallest pixel p, at (min_x, min_y) */
+    int min_x, min_y;
+    int pass;
+} RfStatResult;
+RfStatus rf_diff_stat(const RfImage *a, const RfImage *b, const RfImage *va, const RfImage *vb, double alpha,
+                      double accept, RfStatResult *out, RfImage *pvalues, char *err, size_t errsz);
+
 #ifdef __cplusplus
 }
 #endif

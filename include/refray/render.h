@@ -82,6 +82,13 @@ typedef struct {
      * thread); the image is the same as without (RF_ERR_DOMAIN for a larger window) */
     RfTraceFn trace;
     void *trace_ctx;
+    /* Statistical image tests (refray diff --stat): when set, filled (allocated here, the
+     * window's size, RGB) with each pixel's variance of its mean: the samples' variance over
+     * their number, s^2 / n. Needs 2 or more samples, the box filter and no adaptive
+     * supersampling (RF_ERR_DOMAIN otherwise). Stratified and Sobol samples vary less than
+     * independent ones, so s^2 / n overstates their variance: a test with it errs on the side of
+     * accepting. */
+    RfImage *variance;
 } RfRenderOptions;
 
 /* The side of a render's tiles, and their number in a w x h window. */

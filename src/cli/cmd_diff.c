@@ -22,6 +22,8 @@ static void usage(FILE *out)
             "                   [--depth-heatmap OUT.png] [--warn X] [--warnpercent P] [--fail Y]\n"
             "                   [--failpercent P] [--fail-mean M] [--hardfail H] [--depth-edge E]\n"
             "                   [--gamma G | --srgb | --as-is] [--space linear|display] [--kv]\n"
+            "       refray diff A B --stat --var-a VA.exr --var-b VB.exr [--alpha A] [--accept S]\n"
+            "                   [--heatmap P.png] [--kv]\n"
             "  A is the image under test, B the reference (EXR or PNG; PNG is decoded with --gamma G,\n"
             "  default 2.2, or --srgb). --space display compares the gamma/sRGB-encoded values, so\n"
             "  that one 8-bit code is 1/255 (the default when A or B is a PNG: grading a student's\n"
@@ -33,6 +35,11 @@ static void usage(FILE *out)
             "        (off), or a value is NaN/Inf on one side; WARN: more than --warnpercent %% (0.1)\n"
             "        differ by more than --warn (1e-4); otherwise PASS. In display values the defaults\n"
             "        allow 8-bit rounding: --fail-mean 1/255, --warn 0.5/255.\n"
+            "  --stat: two noisy renders (EXR) with their variances (refray render --variance) by a\n"
+            "        per-pixel z-test: |a - b| / sqrt(va + vb) per channel, the pixel's p the smallest\n"
+            "        channel's times 3; a pixel accepts when p > 1 - (1 - A)^(1/pixels) (A = --alpha,\n"
+            "        0.01: Sidak over the pixels); PASS when at least --accept (0.9975) of the pixels\n"
+            "        accept (Mitsuba 3's test), else FAIL; --heatmap shows -log10 p (white: p = 1e-6)\n"
             "  --kv prints key=value lines (for scripts).\n"
             "exit: 0 pass, 1 warn, 2 fail, 3 size or channel mismatch, 4 file error, 5 usage error\n");
 }
@@ -96,13 +103,74 @@ static int write_png(const char *path, const RfImage *img, char *err, size_t err
     return rf_png_write(path, img, p, err, errsz) == RF_OK;
 }
 
+/* refray diff --stat (rf_diff_stat): exit 0 pass, 2 fail, 3 mismatch, 4 file error */
+static int stat_test(const char *pa, const char *pb, const char *pva, const char *pvb, double alpha, double accept,
+                     const char *heatmap, int kv)
+{
+    char err[1024];
+    const char *outs[1] = {heatmap}, *ins[4] = {pa, pb, pva, pvb};
+    if (rf_outputs_check(outs, 1, ins, 4, err, sizeof err) != RF_OK) {
+        fprintf(stderr, "refray diff: %s\n", err);
+        return EXIT_USAGE;
+    }
+    RfImage im[4], pv = {0, 0, 0, NULL};
+    const char *paths[4] = {pa, pb, pva, pvb};
+    int rc = EXIT_FILE, n = 0;
+    for (; n < 4; n++)
+        if (rf_exr_read(paths[n], &im[n], err, sizeof err) != RF_OK) {
+            fprintf(stderr, "refray diff: %s\n", err);
+            goto done;
+        }
+    RfStatResult r;
+    RfStatus st = rf_diff_stat(&im[0], &im[1], &im[2], &im[3], alpha, accept, &r, heatmap ? &pv : NULL, err, sizeof err);
+    if (st != RF_OK) {
+        fprintf(stderr, "refray diff: %s\n", err);
+        rc = st == RF_ERR_DOMAIN ? EXIT_MISMATCH : EXIT_FILE;
+        goto done;
+    }
+    if (kv)
+        printf("pixels=%ld\naccepted=%ld\naccepted_share=%.9g\nalpha=%.9g\nalpha_pixel=%.9g\nmin_p=%.9g\n"
+               "min_p_x=%d\nmin_p_y=%d\nverdict=%s\n",
+               r.pixels, r.accepted, (double)r.accepted / (double)r.pixels, alpha, r.alpha_pixel, r.min_p, r.min_x,
+               r.min_y, r.pass ? "PASS" : "FAIL");
+    else
+        printf("A: %s (variance %s)\nB: %s (variance %s)\nper-pixel z-test: %ld of %ld pixels accept (%.4f %%, "
+               "needed %.4f %%) at the Sidak level %.3g (alpha %g); smallest p %.3g at (%d, %d)\nverdict: %s\n",
+               pa, pva, pb, pvb, r.accepted, r.pixels, 100.0 * (double)r.accepted / (double)r.pixels, 100.0 * accept,
+               r.alpha_pixel, alpha, r.min_p, r.min_x, r.min_y, r.pass ? "PASS" : "FAIL");
+    rc = r.pass ? 0 : 2;
+    if (heatmap) { /* -log10 p, white at p = 1e-6 */
+        RfImage h;
+        if (rf_image_alloc(&h, pv.width, pv.height, 3) == RF_OK) {
+            for (size_t i = 0; i < (size_t)pv.width * (size_t)pv.height; i++) {
+                double t = fmin(1.0, -log10(fmax((double)pv.data[i], 1e-300)) / 6.0);
+                h.data[3 * i] = (float)fmin(1.0, 3.0 * t);
+                h.data[3 * i + 1] = (float)fmin(1.0, fmax(0.0, 3.0 * t - 1.0));
+                h.data[3 * i + 2] = (float)fmin(1.0, fmax(0.0, 3.0 * t - 2.0));
+            }
+            if (!write_png(heatmap, &h, err, sizeof err)) {
+                fprintf(stderr, "refray diff: %s\n", err);
+                rc = EXIT_FILE;
+            }
+            rf_image_free(&h);
+        }
+    }
+done:
+    for (int k = 0; k < n; k++)
+        rf_image_free(&im[k]);
+    rf_image_free(&pv);
+    return rc;
+}
+
 int rf_cmd_diff(int argc, char **argv)
 {
     const char *pa = NULL, *pb = NULL, *heatmap = NULL, *depth_heatmap = NULL, *pda = NULL, *pdb = NULL;
     RfDiffOptions o = rf_diff_options_default();
     RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
     int kv = 0, space = -1; /* -1 auto, 0 linear, 1 display */
-    int set_warn = 0, set_mean = 0;
+    int set_warn = 0, set_mean = 0, stat = 0;
+    const char *pva = NULL, *pvb = NULL;
+    double alpha = 0.01, accept = 0.9975;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int ok = 1, shared, used;
@@ -141,6 +209,16 @@ int rf_cmd_diff(int argc, char **argv)
             ok = space >= 0;
         } else if (strcmp(a, "--kv") == 0) {
             kv = 1;
+        } else if (strcmp(a, "--stat") == 0) {
+            stat = 1;
+        } else if (strcmp(a, "--var-a") == 0 && v) {
+            pva = v, i++;
+        } else if (strcmp(a, "--var-b") == 0 && v) {
+            pvb = v, i++;
+        } else if (strcmp(a, "--alpha") == 0 && v) {
+            ok = rf_arg_nonneg(v, &alpha) && alpha > 0.0 && alpha < 1.0, i++;
+        } else if (strcmp(a, "--accept") == 0 && v) {
+            ok = rf_arg_nonneg(v, &accept) && accept <= 1.0, i++;
         } else if (a[0] != '-' && !pa) {
             pa = a;
         } else if (a[0] != '-' && !pb) {
@@ -153,6 +231,13 @@ int rf_cmd_diff(int argc, char **argv)
             fprintf(stderr, "refray diff: bad value for %s\n", a);
             return EXIT_USAGE;
         }
+    }
+    if (stat || pva || pvb) {
+        if (!pa || !pb || !stat || !pva || !pvb) {
+            fprintf(stderr, "refray diff: --stat takes A, B, --var-a and --var-b\n");
+            return EXIT_USAGE;
+        }
+        return stat_test(pa, pb, pva, pvb, alpha, accept, heatmap, kv);
     }
     if (!pa || !pb || (!pda) != (!pdb) || (depth_heatmap && !pda)) {
         if (pa && pb)

@@ -57,6 +57,7 @@ static void usage(FILE *out)
             "                     [--kernel auto|general|PARTS] [--preview] [--quiet]\n"
             "                     [--crop X0,Y0,X1,Y1 | --tiles N --tile K]\n"
             "                     [--checkpoint FILE [--checkpoint-every S]] [--resume FILE]\n"
+            "                     [--variance VAR.exr]\n"
             "  SCENE      an .nff, .rf or .obj scene (docs/scene-format.md)\n"
             "  -o         linear OpenEXR output (float RGB, settings in the header)\n"
             "  --png      display PNG: gamma %.1f encoded (the script's §1.1.2), or --srgb\n"
@@ -82,6 +83,8 @@ static void usage(FILE *out)
             "  --checkpoint FILE  every S seconds (default 5) write the finished tiles to FILE, a\n"
             "             partial EXR marked as such; SIGINT or SIGTERM then stop the render with FILE\n"
             "             written (exit 130 or 143); removed when the render completes\n"
+            "  --variance VAR.exr  each pixel's variance of its mean (2+ box-filtered samples), for\n"
+            "             refray diff --stat\n"
             "  --resume FILE  continue such a render (the same scene and settings), keeping its\n"
             "             checkpoint in FILE; the result is the uninterrupted render's, bit for bit\n",
             2.2);
@@ -167,7 +170,7 @@ static const char *expected_value(const char *opt)
 int rf_cmd_render(int argc, char **argv)
 {
     const char *scene_path = NULL, *exr = NULL, *png = NULL, *depth_out = NULL;
-    const char *checkpoint = NULL, *resume = NULL;
+    const char *checkpoint = NULL, *resume = NULL, *variance = NULL;
     int tiles = 0, tile = -1, have_crop = 0;
     double checkpoint_every = 5.0;
     RfRenderOptions opt = rf_render_options_default();
@@ -201,6 +204,8 @@ int rf_cmd_render(int argc, char **argv)
             ok = rf_arg_int(v, 1, 65536, &tiles), i++;
         } else if (strcmp(a, "--tile") == 0 && v) {
             ok = rf_arg_int(v, 0, 65535, &tile), i++;
+        } else if (strcmp(a, "--variance") == 0 && v) {
+            variance = v, i++;
         } else if (strcmp(a, "--checkpoint") == 0 && v) {
             checkpoint = v, i++;
         } else if (strcmp(a, "--checkpoint-every") == 0 && v) {
@@ -234,13 +239,13 @@ int rf_cmd_render(int argc, char **argv)
     char err[1024];
     RfScene scene;
     { /* the outputs, before any work: writable, not an input, not one another */
-        const char *outs[4] = {exr, png, depth_out, checkpoint};
+        const char *outs[5] = {exr, png, depth_out, checkpoint, variance};
         const char *ins[2] = {scene_path, resume && !rf_output_same(resume, checkpoint) ? resume : NULL};
         if (resume && access(resume, R_OK) != 0) {
             fprintf(stderr, "refray render: --resume %s: %s\n", resume, strerror(errno));
             return 2;
         }
-        if (rf_outputs_check(outs, 4, ins, ins[1] ? 2 : 1, err, sizeof err) != RF_OK) {
+        if (rf_outputs_check(outs, 5, ins, ins[1] ? 2 : 1, err, sizeof err) != RF_OK) {
             fprintf(stderr, "refray render: %s\n", err);
             return 2;
         }
@@ -325,8 +330,9 @@ int rf_cmd_render(int argc, char **argv)
     clock_gettime(CLOCK_MONOTONIC, &prog.start);
     opt.progress = show_progress;
     opt.progress_ctx = &prog;
-    RfImage img;
+    RfImage img, var = {0, 0, 0, NULL};
     RfRenderStats st;
+    opt.variance = variance ? &var : NULL;
     RfStatus rs = rf_render(&scene, &opt, &img, &st);
     int caught = rf_signal_watch_stop(watch);
     int focus_missing = !isnan(opt.aperture) && opt.aperture > 0.0 && isnan(opt.focus) && !(scene.camera.focus > 0.0);
@@ -371,6 +377,10 @@ int rf_cmd_render(int argc, char **argv)
             return 1;
         if (rs == RF_ERR_DOMAIN && focus_missing)
             fprintf(stderr, "refray render: %s: --aperture needs --focus (the scene's camera has none)\n", scene_path);
+        else if (rs == RF_ERR_DOMAIN && variance && (st.samples < 2 || st.adaptive || st.filter.kind != RF_FILTER_BOX ||
+                                                     st.filter.radius != 0.5))
+            fprintf(stderr, "refray render: %s: --variance needs 2 or more samples with the box filter (not adaptive)\n",
+                    scene_path);
         else if (rs == RF_ERR_DOMAIN && opt.kernel)
             fprintf(stderr, "refray render: %s: kernel '%s' lacks a part the scene needs (refray info names it)\n",
                     scene_path, rf_kernel_name(opt.kernel, (char[256]){0}, 256));
@@ -411,6 +421,14 @@ int rf_cmd_render(int argc, char **argv)
         fprintf(stderr, "refray render: %s\n", err);
         rc = 1;
     }
+    if (variance && !rc) {
+        RfImageAttr vattrs[5] = {identity[0], identity[1], identity[2], identity[3],
+                                 {"refray:variance", "per channel, the variance of each pixel's mean: s^2 / n"}};
+        if (rf_exr_write_opts(variance, &var, vattrs, 5, eopt, err, sizeof err) != RF_OK) {
+            fprintf(stderr, "refray render: %s\n", err);
+            rc = 1;
+        }
+    }
     if (depth_out && !rc && rf_exr_write_opts(depth_out, &depth, identity, 4, eopt, err, sizeof err) != RF_OK) {
         fprintf(stderr, "refray render: %s\n", err);
         rc = 1;
@@ -427,6 +445,7 @@ int rf_cmd_render(int argc, char **argv)
     }
     rf_image_free(&depth);
     rf_image_free(&img);
+    rf_image_free(&var);
     if (!quiet) {
         unsigned long long rays = st.primary_rays + st.shadow_rays + st.secondary_rays;
         fprintf(stderr, "refray render: %s %dx%d, %d spp: %llu rays (%llu primary, %llu shadow, %llu secondary); "

@@ -263,3 +263,52 @@ RfStatus rf_diff_depth_heatmap(const RfImage *da, const RfImage *db, const unsig
     }
     return RF_OK;
 }
+
+RfStatus rf_diff_stat(const RfImage *a, const RfImage *b, const RfImage *va, const RfImage *vb, double alpha,
+                      double accept, RfStatResult *out, RfImage *pvalues, char *err, size_t errsz)
+{
+    const RfImage *im[4] = {a, b, va, vb};
+    memset(out, 0, sizeof *out);
+    for (int k = 0; k < 4; k++)
+        if (!im[k] || !im[k]->data || im[k]->channels < 3 || im[k]->width != a->width || im[k]->height != a->height) {
+            snprintf(err, errsz, "the images and their variances must all be %dx%d RGB", a ? a->width : 0,
+                     a ? a->height : 0);
+            return RF_ERR_DOMAIN;
+        }
+    if (!(alpha > 0.0 && alpha < 1.0) || !(accept >= 0.0 && accept <= 1.0)) {
+        snprintf(err, errsz, "alpha must lie in (0, 1) and the accepted share in [0, 1]");
+        return RF_ERR_DOMAIN;
+    }
+    if (pvalues && rf_image_alloc(pvalues, a->width, a->height, 1) != RF_OK) {
+        snprintf(err, errsz, "out of memory");
+        return RF_ERR_NOMEM;
+    }
+    long n = (long)a->width * a->height;
+    out->pixels = n;
+    out->alpha_pixel = -expm1(log1p(-alpha) / (double)n); /* 1 - (1 - alpha)^(1/n), without cancellation */
+    out->min_p = 2.0;
+    for (long i = 0; i < n; i++) {
+        double p = 1.0;
+        for (int c = 0; c < 3; c++) {
+            size_t at = (size_t)i * (size_t)a->channels + (size_t)c;
+            double d = (double)a->data[at] - (double)b->data[(size_t)i * (size_t)b->channels + (size_t)c];
+            double v = (double)va->data[(size_t)i * (size_t)va->channels + (size_t)c] +
+                       (double)vb->data[(size_t)i * (size_t)vb->channels + (size_t)c];
+            double pc = v > 0.0 ? erfc(fabs(d) / sqrt(2.0 * v)) : d == 0.0 ? 1.0 : 0.0;
+            if (!(pc == pc)) /* NaN in an image: it fails */
+                pc = 0.0;
+            p = fmin(p, pc);
+        }
+        p = fmin(1.0, 3.0 * p);
+        out->accepted += p > out->alpha_pixel;
+        if (p < out->min_p) {
+            out->min_p = p;
+            out->min_x = (int)(i % a->width);
+            out->min_y = (int)(i / a->width);
+        }
+        if (pvalues)
+            pvalues->data[i] = (float)p;
+    }
+    out->pass = (double)out->accepted >= accept * (double)n;
+    return RF_OK;
+}

@@ -99,6 +99,7 @@ typedef struct {
                                        pixel around it */
     int centres_x0, centres_y0, centres_w;
     RfPathLog *trace_log;           /* refray trace (a 1 x 1 crop): every sample logs here */
+    RfImage *variance;              /* NULL, or each pixel's variance of its mean (the crop's size) */
     RfImage *img;                   /* the crop, whose top left pixel is (img_x0, img_y0) */
     int img_x0, img_y0;
     RfRenderStats *per_thread;      /* one per thread: no sharing on the hot path */

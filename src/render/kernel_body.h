@@ -373,14 +373,17 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
                     sum = RF_KNAME(camera_ray)(job, ray, &ps, st, shadow_cache);
                 }
             } else {
-                RfRgb wsum_c = rf_rgb(0, 0, 0);
+                RfRgb wsum_c = rf_rgb(0, 0, 0), sq = rf_rgb(0, 0, 0);
                 double wsum = 0.0;
                 for (int k = 0; k < n; k++) {
                     double s[2];
                     ps.k = (uint32_t)k;
                     rf_sample_2d(job->sampler, (uint32_t)k, (uint32_t)n, ps.pixel, RF_DIM_PIXEL, job->seed, s);
                     if (job->filter_box) {
-                        sum = rf_rgb_add(sum, RF_KNAME(camera_sample)(job, x + s[0], y + s[1], &ps, st, shadow_cache));
+                        RfRgb c = RF_KNAME(camera_sample)(job, x + s[0], y + s[1], &ps, st, shadow_cache);
+                        sum = rf_rgb_add(sum, c);
+                        if (job->variance) /* refray diff --stat: the samples' spread */
+                            sq = rf_rgb_add(sq, rf_rgb_mul(c, c));
                     } else {
                         double r = job->filter.radius, ox = (2.0 * s[0] - 1.0) * r, oy = (2.0 * s[1] - 1.0) * r;
                         double w = rf_filter_eval(&job->filter, ox, oy);
@@ -393,6 +396,8 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
                 /* a filter with negative lobes may leave a weight sum <= 0: then the plain mean */
                 if (!job->filter_box && wsum > 0.0)
                     sum = rf_rgb_scale(wsum_c, (double)n / wsum);
+                if (job->variance)
+                    rf_kernel_store_variance(job, x, y, sum, sq, n);
             }
             rf_kernel_store(job, st, x, y, rf_rgb(sum.r / n, sum.g / n, sum.b / n));
             if (RF_TRACE_ON(&ps))

@@ -89,6 +89,18 @@ static void rf_kernel_trace_pixel(const RfKernelJob *job, const RfPathSample *ps
     ps->log->trace(ps->log->trace_ctx, &ev);
 }
 
+/* Pixel (x, y)'s variance of its mean from the sum and the sum of squares of its n samples:
+ * s^2 / n with s^2 = (sq - sum^2 / n) / (n - 1), per channel, never below 0 (rounding). */
+static void rf_kernel_store_variance(const RfKernelJob *job, int x, int y, RfRgb sum, RfRgb sq, int n)
+{
+    float *v = job->variance->data + ((size_t)(y - job->img_y0) * (size_t)job->variance->width + (size_t)(x - job->img_x0)) * 3;
+    const double s[3] = {sum.r, sum.g, sum.b}, q[3] = {sq.r, sq.g, sq.b};
+    for (int c = 0; c < 3; c++) {
+        double var = (q[c] - s[c] * s[c] / n) / ((double)n - 1.0) / n;
+        v[c] = (float)(var > 0.0 ? var : 0.0);
+    }
+}
+
 /* Appends to an explained path (kernel.h RfPathLog). */
 static void rf_kernel_log(RfPathLog *log, const char *fmt, ...)
 {

@@ -260,6 +260,8 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     RfStatus st;
     memset(&run, 0, sizeof run);
     memset(stats, 0, sizeof *stats);
+    if (opt->variance) /* empty until filled: freed safely on any failure */
+        memset(opt->variance, 0, sizeof *opt->variance);
     run.opt = opt;
     Resolved res;
     job->width = opt->width > 0 ? opt->width : scene->render.width;
@@ -386,6 +388,11 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     clock_gettime(CLOCK_MONOTONIC, &t1);
     if (st == RF_OK)
         st = rf_image_alloc(img, crop_w, crop_h, 3);
+    if (st == RF_OK && opt->variance) { /* the samples' variance: 2 or more plain (box) samples */
+        st = res.samples >= 2 && job->filter_box && !res.adaptive ? rf_image_alloc(opt->variance, crop_w, crop_h, 3)
+                                                                  : RF_ERR_DOMAIN;
+        job->variance = st == RF_OK ? opt->variance : NULL;
+    }
     if (st == RF_OK && job->moving) { /* §3.10 one motion state per thread */
         job->motion = calloc((size_t)threads, sizeof *job->motion);
         for (int i = 0; job->motion && i < threads && st == RF_OK; i++)
@@ -465,7 +472,10 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     free(column_x);
     free(row_y);
     rf_tracer_free(tracer);
-    if (st != RF_OK)
+    if (st != RF_OK) {
         rf_image_free(img);
+        if (opt->variance)
+            rf_image_free(opt->variance);
+    }
     return st;
 }
