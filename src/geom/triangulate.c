@@ -45,11 +45,14 @@ static inline double corner(const Ears *e, int a, int b, int c)
     return e->sgn * ((u[b] - u[a]) * (v[c] - v[a]) - (v[b] - v[a]) * (u[c] - u[a]));
 }
 
+/* The cell of coordinate x, clamped to the grid (in double first: an ear reaches far beyond the
+ * blockers' grid, and a double beyond int's range has no int; found by fuzzing) */
 static int cell_of(double x, double x0, double inv, int count)
 {
     double f = (x - x0) * inv;
-    int i = f >= 0.0 ? (int)f : 0;
-    return i < count ? i : count - 1;
+    if (!(f >= 0.0))
+        return 0;
+    return f < (double)count ? (int)f : count - 1;
 }
 
 /* The grid over the current blockers, about one per cell (counting sort into the cells). */
