@@ -32,7 +32,8 @@ static const char *const keys_help =
     "              reproduces)\n"
     "  [ ]         recursion depth - / +          - =   samples per pixel / 2, x 2\n"
     "  left drag   orbit around the target         right drag (or shift + left)  pan\n"
-    "  wheel       dolly                           R     reset the camera\n"
+    "  arrows      orbit (left/right, up/down)     wheel, PgUp / PgDn   dolly\n"
+    "  R           reset the camera\n"
     "  C           print the camera in refray's scene syntax, ready to paste into the file\n"
     "  click       pixel inspector: linear RGB and the primitive hit (printed)\n"
     "  S           save what is shown: view-N.exr (linear) and view-N.png\n"
@@ -381,6 +382,8 @@ static void inspect(View *v, int x, int y)
     fflush(stdout);
 }
 
+static void on_scroll(GLFWwindow *win, double sx, double sy);
+
 static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
 {
     (void)scancode;
@@ -408,6 +411,11 @@ static void on_key(GLFWwindow *win, int key, int scancode, int action, int mods)
     if (key == GLFW_KEY_R) {
         v->scene.camera = v->home;
         changed = 1;
+    } else if (key == GLFW_KEY_LEFT || key == GLFW_KEY_RIGHT || key == GLFW_KEY_UP || key == GLFW_KEY_DOWN) {
+        orbit(v, key == GLFW_KEY_LEFT ? -10 : key == GLFW_KEY_RIGHT ? 10 : 0,
+              key == GLFW_KEY_UP ? -10 : key == GLFW_KEY_DOWN ? 10 : 0);
+    } else if (key == GLFW_KEY_PAGE_UP || key == GLFW_KEY_PAGE_DOWN) {
+        on_scroll(win, 0.0, key == GLFW_KEY_PAGE_UP ? 1.0 : -1.0);
     } else if (key == GLFW_KEY_C) {
         print_camera(&v->scene.camera);
     } else if (key == GLFW_KEY_S) {

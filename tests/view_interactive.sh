@@ -47,7 +47,13 @@ title "| 2/2 spp"
 xdotool mousemove --window "$wid" 80 60 mousedown 1 mousemove --window "$wid" 110 60 mouseup 1
 sleep 0.3; title "| 2/2 spp"; key s     # 3: orbited
 i=0; while [ ! -f view-3.exr ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+key r; sleep 0.3; title "| 2/2 spp"; key s  # 4: reset: the first image again
+i=0; while [ ! -f view-4.exr ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+"$bin" diff view-4.exr ref.exr --kv | grep -q '^all.max_abs=0$' || fail "R did not reset the camera"
+key Left; key Page_Up; sleep 0.3; title "| 2/2 spp"; key s  # 5: arrow and page keys move the camera
+i=0; while [ ! -f view-5.exr ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
 "$bin" diff view-3.exr ref.exr --kv | grep -q '^all.max_abs=0$' && fail "the drag did not move the camera"
+"$bin" diff view-5.exr ref.exr --kv | grep -q '^all.max_abs=0$' && fail "the arrow and page keys did not move the camera"
 key q
 i=0; while kill -0 "$pid" 2>/dev/null && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
 kill -0 "$pid" 2>/dev/null && fail "Q did not quit"
