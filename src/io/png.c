@@ -191,11 +191,15 @@ static RfStatus png_read_impl(const char *path, RfPngOptions decode, RfImage *im
                           pe->status == RF_ERR_NOMEM ? "cannot read PNG" : "corrupt or truncated PNG", pe->msg);
     }
     png_init_io(png, fp);
-    /* No chunk may make libpng allocate more than 16 MiB, and the suggested palettes (sPLT),
-     * which refray never uses, are skipped: a 119-byte file asked libpng for 2 GiB through a
-     * malformed sPLT (found by fuzzing, tests/data/fuzz/png/). */
+    /* No chunk may make libpng allocate more than 16 MiB, and every ancillary chunk refray does
+     * not read (text, palettes, profiles, times, ...; only tRNS gives pixels) is skipped unread:
+     * 119 bytes asked libpng for 2 GiB through a malformed sPLT, 71 bytes took 1.8 GB through an
+     * iTXt that claimed 1.8 GB (both found by fuzzing, tests/data/fuzz/png/). */
+    static const png_byte skipped[] = "cHRM\0gAMA\0iCCP\0sBIT\0sRGB\0bKGD\0hIST\0pHYs\0sPLT\0tIME\0iTXt\0"
+                                      "tEXt\0zTXt\0eXIf\0oFFs\0pCAL\0sCAL\0sTER\0";
     png_set_chunk_malloc_max(png, (png_alloc_size_t)16 << 20);
-    png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_NEVER, (png_const_bytep) "sPLT", 1);
+    png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_NEVER, NULL, 0); /* unknown ones too */
+    png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_NEVER, skipped, (int)(sizeof skipped / 5));
     png_read_info(png, info);
     color_type = png_get_color_type(png, info);
     depth = png_get_bit_depth(png, info);
