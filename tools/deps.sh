@@ -11,44 +11,47 @@
 #                               the farm examples, python3 for tools/nff2pov.py, Xvfb for the
 #                               viewer's headless test; as `bench`)
 set -u
-if [ "${1:-}" = test ]; then
-    m=""
-    command -v povray >/dev/null 2>&1 || m="$m povray"
-    command -v parallel >/dev/null 2>&1 || m="$m parallel"
-    command -v sbatch >/dev/null 2>&1 || m="$m slurm-client"
-    command -v python3 >/dev/null 2>&1 || m="$m python3"
-    command -v xvfb-run >/dev/null 2>&1 || m="$m xvfb xauth"
-    command -v xdotool >/dev/null 2>&1 || m="$m xdotool"
-    [ -z "$m" ] && exit 0
+
+# optional WHO WHAT FAILED MISSING PACKAGES...: packages that only some tests or the benchmark use,
+# installed as root, else the apt-get line is printed (MISSING: a printf format given the list
+# twice); never fails
+optional() {
+    who=$1 what=$2 failed=$3 missing=$4
+    shift 4
+    [ $# -eq 0 ] && exit 0
+    m=" $*"
     if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
-        echo "refray tests: installing what some tests use:$m" >&2
+        echo "$who: installing $what:$m" >&2
         export DEBIAN_FRONTEND=noninteractive
-        { apt-get update -qq && apt-get install -y -qq --no-install-recommends $m; } >/dev/null 2>&1 ||
-            echo "refray tests: apt-get failed; those tests skip without:$m" >&2
+        { apt-get update -qq && apt-get install -y -qq --no-install-recommends "$@"; } >/dev/null 2>&1 ||
+            echo "$who: apt-get failed; $failed:$m" >&2
     else
-        echo "refray tests: some tests skip without:$m (sudo apt-get install$m)" >&2
+        printf "%s: $missing\n" "$who" "$m" "$m" >&2
     fi
     exit 0
+}
+
+if [ "${1:-}" = test ]; then
+    set --
+    command -v povray >/dev/null 2>&1 || set -- "$@" povray
+    command -v parallel >/dev/null 2>&1 || set -- "$@" parallel
+    command -v sbatch >/dev/null 2>&1 || set -- "$@" slurm-client
+    command -v python3 >/dev/null 2>&1 || set -- "$@" python3
+    command -v xvfb-run >/dev/null 2>&1 || set -- "$@" xvfb xauth
+    command -v xdotool >/dev/null 2>&1 || set -- "$@" xdotool
+    optional "refray tests" "what some tests use" "those tests skip without" \
+        "some tests skip without:%s (sudo apt-get install%s)" "$@"
 fi
-BENCH_PACKAGES="libembree-dev povray libcgal-demo gnuplot-nox python3-numpy"
 
 if [ "${1:-}" = bench ]; then
-    m=""
-    [ -f /usr/include/embree3/rtcore.h ] || m="$m libembree-dev"
-    command -v povray >/dev/null 2>&1 || m="$m povray"
-    [ -f /usr/share/doc/libcgal-demo/data.tar.gz ] || m="$m libcgal-demo"
-    command -v gnuplot >/dev/null 2>&1 || m="$m gnuplot-nox"
-    python3 -c 'import numpy' >/dev/null 2>&1 || m="$m python3-numpy"
-    [ -z "$m" ] && exit 0
-    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
-        echo "refray bench: installing the anchors:$m" >&2
-        export DEBIAN_FRONTEND=noninteractive
-        { apt-get update -qq && apt-get install -y -qq --no-install-recommends $m; } >/dev/null 2>&1 ||
-            echo "refray bench: apt-get failed; the benchmark runs without:$m" >&2
-    else
-        echo "refray bench: the anchors are missing; for the full comparison run: sudo apt-get install$m" >&2
-    fi
-    exit 0
+    set --
+    [ -f /usr/include/embree3/rtcore.h ] || set -- "$@" libembree-dev
+    command -v povray >/dev/null 2>&1 || set -- "$@" povray
+    [ -f /usr/share/doc/libcgal-demo/data.tar.gz ] || set -- "$@" libcgal-demo
+    command -v gnuplot >/dev/null 2>&1 || set -- "$@" gnuplot-nox
+    python3 -c 'import numpy' >/dev/null 2>&1 || set -- "$@" python3-numpy
+    optional "refray bench" "the anchors" "the benchmark runs without" \
+        "the anchors are missing; for the full comparison run: sudo apt-get install%s%.0s" "$@"
 fi
 PACKAGES="build-essential pkg-config libcjson-dev libpng-dev libopenexr-dev libosmesa6-dev libegl-dev libegl-mesa0 \
 libglfw3-dev libcgal-dev libgmp-dev libmpfr-dev libcairo2-dev libfontconfig-dev zlib1g-dev"
