@@ -1,4 +1,6 @@
 /* The test runner: runs every test of every table (or those whose name contains argv[1]). */
+#define _XOPEN_SOURCE 700
+#include <limits.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -112,6 +114,32 @@ const char *rf_test_run(const char *cmd, int *exit_code)
     int st = pclose(p);
     *exit_code = st >= 0 && (st & 0x7f) == 0 ? (st >> 8) & 0xff : -1;
     return out;
+}
+
+int rf_test_have(const char *program)
+{
+    char cmd[512];
+    int code;
+    snprintf(cmd, sizeof cmd, "command -v '%s' >/dev/null 2>&1", program);
+    rf_test_run(cmd, &code);
+    return code == 0;
+}
+
+int rf_test_tool(const char *name, char *out, size_t size)
+{
+    char bin[PATH_MAX];
+    if (!realpath(rf_test_bin(), bin))
+        return 0;
+    snprintf(out, size, "%.*s/%s", (int)(strrchr(bin, '/') - bin), bin, name);
+    return 1;
+}
+
+double rf_test_diff_kv(const char *out, const char *name)
+{
+    char key[64];
+    snprintf(key, sizeof key, "all.%s=", name);
+    const char *p = strstr(out, key);
+    return p ? strtod(p + strlen(key), NULL) : NAN;
 }
 
 int main(int argc, char **argv)

@@ -29,6 +29,13 @@ const char *rf_test_data(const char *name); /* static buffer: tests/data/<name> 
 int rf_test_formula_cases(const char *file, double rel, double abs_tol);
 /* Runs a shell command, captures stdout (static buffer) and the exit code. */
 const char *rf_test_run(const char *cmd, int *exit_code);
+/* 1 when program is on the PATH (tests that need an optional tool skip without it). */
+int rf_test_have(const char *program);
+/* The absolute path of one of the built binaries ("refray-raster"), the one beside rf_test_bin();
+ * 0 when rf_test_bin() does not resolve. */
+int rf_test_tool(const char *name, char *out, size_t size);
+/* The value of all.NAME in `refray diff --kv` output, NAN when absent. */
+double rf_test_diff_kv(const char *out, const char *name);
 
 #define RF_CHECK(cond)                                                                       \
     do {                                                                                     \

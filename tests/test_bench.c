@@ -211,8 +211,7 @@ static void t_plot(void)
     snprintf(path, sizeof path, "%s/P.dat", t.dir);
     RF_CHECK(file_exists(path));
     /* with gnuplot (when installed): the SVG */
-    rf_test_run("command -v gnuplot >/dev/null 2>&1", &rc);
-    if (rc == 0) {
+    if (rf_test_have("gnuplot")) {
         snprintf(args, sizeof args, TINY " --plot %s/P.svg 2>&1", t.dir);
         out = bench(args, &rc);
         RF_CHECK_EQ_INT(rc, 0);

@@ -403,7 +403,7 @@ static void t_farm_cli_interrupt_resume(void)
  * the merge), and sbatch --test-only parses them where Slurm is installed. */
 static void t_farm_examples(void)
 {
-    if (system("command -v parallel >/dev/null 2>&1") != 0) {
+    if (!rf_test_have("parallel")) {
         fprintf(stderr, "  skipped: GNU parallel is not installed (apt-get install parallel)\n");
         return;
     }
@@ -413,8 +413,8 @@ static void t_farm_examples(void)
         rf_test_fail(__FILE__, __LINE__, "mkdtemp");
         return;
     }
-    char bin[1024];
-    if (!realpath(rf_test_bin(), bin)) {
+    char bin[1100];
+    if (!rf_test_tool("refray", bin, sizeof bin)) {
         rf_test_fail(__FILE__, __LINE__, "no %s", rf_test_bin());
         return;
     }

@@ -17,24 +17,6 @@
 #include <stdlib.h>
 #include <unistd.h>
 
-static int have(const char *prog)
-{
-    char cmd[256];
-    int code;
-    snprintf(cmd, sizeof cmd, "command -v %s >/dev/null 2>&1", prog);
-    rf_test_run(cmd, &code);
-    return code == 0;
-}
-
-/* all.NAME from `refray diff --kv` output, or NAN */
-static double kv(const char *out, const char *name)
-{
-    char key[64];
-    snprintf(key, sizeof key, "all.%s=", name);
-    const char *p = strstr(out, key);
-    return p ? strtod(p + strlen(key), NULL) : NAN;
-}
-
 typedef struct {
     const char *name;
     const char *refray_args; /* the scene and its settings for `refray render` */
@@ -45,7 +27,7 @@ typedef struct {
 
 static void t_povray_full_renders(void)
 {
-    if (!have("povray") || !have("python3")) {
+    if (!rf_test_have("povray") || !rf_test_have("python3")) {
         if (getenv("RF_REQUIRE_POVRAY")) {
             rf_test_fail(__FILE__, __LINE__, "povray or python3 is missing (RF_REQUIRE_POVRAY is set)");
         } else {
@@ -75,7 +57,8 @@ static void t_povray_full_renders(void)
                  ">/dev/null 2>&1 && %s diff \"$d/rf.exr\" \"$d/pov.exr\" --kv",
                  dir, c->pov_setup, c->w, c->h, rf_test_bin(), c->refray_args, c->w, c->h, rf_test_bin());
         const char *out = rf_test_run(cmd, &code);
-        double max_abs = kv(out, "max_abs"), mean_abs = kv(out, "mean_abs"), pct = kv(out, "pct_above_255");
+        double max_abs = rf_test_diff_kv(out, "max_abs"), mean_abs = rf_test_diff_kv(out, "mean_abs"),
+               pct = rf_test_diff_kv(out, "pct_above_255");
         fprintf(stderr, "  %-8s refray against POV-Ray: max %.3g, mean %.3g, %.3g %% above 1/255\n", c->name, max_abs,
                 mean_abs, pct);
         if (!(max_abs <= c->max_abs && mean_abs <= c->mean_abs && pct <= c->pct_255))

@@ -88,12 +88,12 @@ static void run_case(const Case *c)
 
 static void t_bad_input_table(void)
 {
-    if (!realpath(rf_test_bin(), bin) || !realpath(rf_test_data("robust"), data) || !mkdtemp(dir)) {
+    if (!realpath(rf_test_bin(), bin) || !rf_test_tool("refray-raster", raster, sizeof raster) ||
+        !rf_test_tool("refray-verify", verify, sizeof verify) || !realpath(rf_test_data("robust"), data) ||
+        !mkdtemp(dir)) {
         rf_test_fail(__FILE__, __LINE__, "cannot set up the scratch folder");
         return;
     }
-    snprintf(raster, sizeof raster, "%.*s/refray-raster", (int)(strrchr(bin, '/') - bin), bin);
-    snprintf(verify, sizeof verify, "%.*s/refray-verify", (int)(strrchr(bin, '/') - bin), bin);
     put("ok.rf", CAM "light point 0 0 5 intensity 1\nsphere 0 0 0 1\n");
     put_graph("chain.rf", 3000, 0);
     put_graph("dag.rf", 30, 1);

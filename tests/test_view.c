@@ -9,29 +9,19 @@
 #include <stdlib.h>
 #include <unistd.h>
 
-static double kv(const char *out, const char *name)
-{
-    char key[64];
-    snprintf(key, sizeof key, "all.%s=", name);
-    const char *p = strstr(out, key);
-    return p ? strtod(p + strlen(key), NULL) : NAN;
-}
-
 static void t_view_screenshot(void)
 {
     int code;
-    rf_test_run("command -v xvfb-run >/dev/null 2>&1", &code);
-    if (code != 0) {
+    if (!rf_test_have("xvfb-run")) {
         fprintf(stderr, "  skipped: xvfb-run is not installed (apt-get install xvfb xauth)\n");
         return;
     }
-    char bin[1024], view[1100], raster[1100], dir[] = "/tmp/rf_view_XXXXXX", cmd[4096];
-    if (!realpath(rf_test_bin(), bin) || !mkdtemp(dir)) {
+    char bin[1100], view[1100], raster[1100], dir[] = "/tmp/rf_view_XXXXXX", cmd[4096];
+    if (!rf_test_tool("refray", bin, sizeof bin) || !rf_test_tool("refray-view", view, sizeof view) ||
+        !rf_test_tool("refray-raster", raster, sizeof raster) || !mkdtemp(dir)) {
         rf_test_fail(__FILE__, __LINE__, "no %s or no temporary folder", rf_test_bin());
         return;
     }
-    snprintf(view, sizeof view, "%.*s/refray-view", (int)(strrchr(bin, '/') - bin), bin);
-    snprintf(raster, sizeof raster, "%.*s/refray-raster", (int)(strrchr(bin, '/') - bin), bin);
     /* Under the sanitizer build, leak checking is off for the viewer's processes only: Mesa's GLX
      * driver keeps blocks to the end whose stacks name no module (compare/lsan.supp says more);
      * ASan's other checks stay on. */
@@ -59,7 +49,7 @@ static void t_view_screenshot(void)
                  "--screenshot %s/shot.png --timeout 90 2>&1 && %s diff %s/shot.png %s/ref.png --space display --kv",
                  view, cases[i].view_args, dir, bin, dir, dir);
         out = rf_test_run(cmd, &code);
-        double mx = kv(out, "max_abs"), pct = kv(out, "pct_above_255");
+        double mx = rf_test_diff_kv(out, "max_abs"), pct = rf_test_diff_kv(out, "pct_above_255");
         fprintf(stderr, "  %s view against its reference PNG (display codes): max %.4g, %.4g %% off by more than 1/255\n",
                 cases[i].what, mx, pct);
         /* compared as the 8-bit codes the two PNGs hold: at most one code apart */
@@ -69,8 +59,7 @@ static void t_view_screenshot(void)
     }
     /* real X events through xdotool: keys, a click, a drag, a broken and a repaired edit, saving
      * (the converged image bit for bit refray render's), quitting (tests/view_interactive.sh) */
-    rf_test_run("command -v xdotool >/dev/null 2>&1", &code);
-    if (code != 0) {
+    if (!rf_test_have("xdotool")) {
         fprintf(stderr, "  skipped the interactive part: xdotool is not installed (apt-get install xdotool)\n");
     } else {
         snprintf(cmd, sizeof cmd, "rm -rf %s/* && ASAN_OPTIONS=detect_leaks=0 timeout 180 xvfb-run -a -s '-screen 0 640x480x24' sh tests/view_interactive.sh %s %s %s %s 2>&1",
