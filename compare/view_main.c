@@ -106,8 +106,7 @@ typedef struct {
     RfImage shown;       /* the tracer's image as it refines */
     int dirty;           /* new pixels since the last upload */
     unsigned generation; /* bumped by every change: the worker restarts */
-    unsigned done_gen;   /* the generation whose last pass finished */
-    int done;
+    unsigned done_gen;   /* the generation whose last pass finished (none yet: generation - 1) */
     volatile int cancel;
     int quit;
     /* the settings of the next render */
@@ -148,7 +147,7 @@ static void *worker(void *arg)
     RfScene *scene = NULL;
     pthread_mutex_lock(&sh->lock);
     while (!sh->quit) {
-        if (sh->done && sh->done_gen == sh->generation && !sh->next_scene) {
+        if (sh->done_gen == sh->generation && !sh->next_scene) {
             pthread_cond_wait(&sh->wake, &sh->lock);
             continue;
         }
@@ -164,7 +163,6 @@ static void *worker(void *arg)
         scene->camera = sh->cam;
         int local = sh->local, depth = sh->depth, samples = sh->samples, threads = sh->threads;
         __atomic_store_n(&sh->cancel, 0, __ATOMIC_RELAXED);
-        sh->done = 0;
         pthread_mutex_unlock(&sh->lock);
         int finished = 1;
         for (int pass = 0; pass < 2 && finished; pass++) {
@@ -180,9 +178,7 @@ static void *worker(void *arg)
             RfStatus rs = rf_render(scene, &o, &img, &st);
             double secs = now_s() - t0;
             pthread_mutex_lock(&sh->lock);
-            if (rs == RF_OK) {
-                memcpy(sh->shown.data, img.data, sizeof(float) * 3 * (size_t)img.width * (size_t)img.height);
-                sh->dirty = 1;
+            if (rs == RF_OK) { /* every tile is in sh->shown already (on_tile) */
                 sh->pass_samples = o.samples;
                 sh->seconds = secs;
                 uint64_t rays = st.primary_rays + st.shadow_rays + st.secondary_rays;
@@ -196,10 +192,8 @@ static void *worker(void *arg)
             pthread_mutex_unlock(&sh->lock);
         }
         pthread_mutex_lock(&sh->lock);
-        if (finished && sh->generation == gen) {
-            sh->done = 1;
+        if (finished && sh->generation == gen)
             sh->done_gen = gen;
-        }
     }
     pthread_mutex_unlock(&sh->lock);
     if (scene) {
@@ -235,7 +229,6 @@ static void restart(View *v)
     pthread_mutex_lock(&sh->lock);
     sh->cam = v->scene.camera;
     sh->generation++;
-    sh->done = 0;
     __atomic_store_n(&sh->cancel, 1, __ATOMIC_RELAXED);
     pthread_cond_signal(&sh->wake);
     pthread_mutex_unlock(&sh->lock);
@@ -563,6 +556,7 @@ int main(int argc, char **argv)
     v.home = v.scene.camera;
     Shared sh;
     memset(&sh, 0, sizeof sh);
+    sh.done_gen = sh.generation - 1; /* nothing rendered yet */
     pthread_mutex_init(&sh.lock, NULL);
     pthread_cond_init(&sh.wake, NULL);
     v.sh = &sh;
@@ -645,7 +639,7 @@ int main(int argc, char **argv)
         int upload = sh.dirty || v.mode != 0;
         memcpy(frame.data, sh.shown.data, sizeof(float) * 3 * (size_t)sh.width * (size_t)sh.height);
         sh.dirty = 0;
-        int done = sh.done && sh.done_gen == sh.generation;
+        int done = sh.done_gen == sh.generation;
         char status[1600];
         snprintf(status, sizeof status, "refray-view %s | %s%s | %d/%d spp, depth %d | %.2f s, %.1f Mrays/s | %s%s%s%s%s",
                  scene_path, v.mode == 0 ? "tracer" : v.mode == 1 ? "OpenGL raster" : "difference",
