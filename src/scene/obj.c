@@ -647,20 +647,6 @@ RfStatus rf__obj_read(const char *name, const char *text, size_t len, const RfOb
     return st;
 }
 
-RfStatus rf__obj_load(const char *path, const RfObjPlacement *pl, RfScene *scene, char *err,
-                      size_t errsz)
-{
-    char *text = NULL;
-    size_t len = 0;
-    RfStatus st = rf__reader_read_file(path, &text, &len, err, errsz);
-    if (st)
-        return st;
-    st = rf__obj_read(path, text, len, pl, scene, err, errsz);
-    scene->source_hash = rf_hash_bytes(scene->source_hash, text, len);
-    free(text);
-    return st;
-}
-
 /* The default view of a bare OBJ file: the bounding sphere fills the vertical field of view,
  * seen from +z a little above and to the right, with a headlight at the eye. */
 static RfStatus default_view(RfScene *scene, const char *name, char *err, size_t errsz)

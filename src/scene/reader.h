@@ -63,8 +63,5 @@ typedef struct {
 /* Appends the faces of OBJ text (materials of its mtllib files too). */
 RfStatus rf__obj_read(const char *name, const char *text, size_t len, const RfObjPlacement *pl,
                       RfScene *scene, char *err, size_t errsz);
-/* Reads an OBJ file from disk with rf__obj_read. */
-RfStatus rf__obj_load(const char *path, const RfObjPlacement *pl, RfScene *scene, char *err,
-                      size_t errsz);
 
 #endif
