@@ -35,6 +35,7 @@ extern const RfTest rf_tests_farm[];
 extern const RfTest rf_tests_view[];
 extern const RfTest rf_tests_trace[];
 extern const RfTest rf_tests_stat[];
+extern const RfTest rf_tests_sides[];
 
 static const RfTest *const suites[] = {
     rf_tests_vecmat, rf_tests_geometry, rf_tests_transform, rf_tests_formula, rf_tests_cli,
@@ -54,6 +55,7 @@ static const RfTest *const suites[] = {
     rf_tests_view,
     rf_tests_trace,
     rf_tests_stat,
+    rf_tests_sides,
 };
 
 int rf_test_failed_checks;

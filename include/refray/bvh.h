@@ -155,6 +155,10 @@ typedef struct {
  * when best changed. */
 int rf_bvh_nearest(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best,
                    RfBvhItemFn fn, void *ctx);
+/* The same with every triangle and sphere seen from either side, their `sides` aside (filtered
+ * shadow rays, which cross every surface in turn). */
+int rf_bvh_nearest_any_side(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best,
+                            RfBvhItemFn fn, void *ctx);
 /* 1 when anything is hit at t_min <= t < t_max, seen from either side (shadow rays); *key (may
  * be NULL) gets the key of the item found. */
 int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,

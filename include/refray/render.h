@@ -22,6 +22,9 @@ typedef struct {
     int threads;     /* for building the BVH; 0: every core */
     int scalar;      /* 1: the scalar BVH kernels instead of AVX/SSE */
     int brute_force; /* 1: no BVH, every item tested against every ray (the reference) */
+    /* Not a speed choice but a convention (RfRenderOptions.two_sided): 1 makes every primitive
+     * visible from both sides, its RF_PRIM_TWO_SIDED and RF_PRIM_INSIDE flags aside. */
+    int two_sided;
 } RfTracerOptions;
 
 RfTracerOptions rf_tracer_options_default(void);
@@ -50,6 +53,11 @@ typedef struct {
     int threads;         /* 0: every core */
     int local_only;      /* 1: primary rays and local Phong only (no shadows, reflection,
                             refraction): the comparator's matching mode */
+    /* Conventions other renderers differ in, so that a cross-render can be exact. */
+    int two_sided;       /* 1: every primitive is seen from both sides, as in POV-Ray and Mitsuba
+                            (one-sided and inside-only primitives too; a back face is shaded with
+                            the normal turned to the ray, as every hit is); 0: as the scene says */
+    int shadows;         /* RfShadowMode; -1: the scene's (default RF_SHADOWS_OPAQUE) */
     uint64_t seed;       /* of the counter-based random numbers (jitter) */
     double fixed_offset; /* 0: the self-intersection policy (rf_hit_offset_origin); > 0 replaces it
                             by this absolute offset: a planted bug for the verifier only */
@@ -188,6 +196,8 @@ struct RfTraceEvent {
     RfVec3 l;                 /* LIGHT: unit direction to the light */
     double distance, n_dot_l; /* LIGHT */
     int visible;              /* LIGHT: 1 lit; 0 in shadow; -1 the light is behind the surface */
+    RfRgb transmittance;      /* LIGHT, filtered shadows: the factor the shadow ray's crossings
+                                 put on I (1, 1, 1 when it crossed nothing) */
     RfRgb intensity, diffuse, specular; /* LIGHT: I at the point, kd I max(0, N.L), ks I max(0, R.V)^n */
     int refracted, tir, fresnel; /* SECONDARY: refracted (else mirror); total internal reflection; exact Fresnel */
     double eta_i, eta_t, cos_i, fr, ft; /* SECONDARY: §3.8.1 */
@@ -212,6 +222,13 @@ int rf_tracer_occluded(const RfTracer *tracer, RfRay ray, double t_min, double t
 int rf_tracer_occluded_cached(const RfTracer *tracer, RfRay ray, double t_min, double t_max, uint64_t *last);
 int rf_tracer_occluded_cached_at(const RfTracer *tracer, RfRay ray, const RfMotionState *ms, double t_min,
                                  double t_max, uint64_t *last);
+/* Filtered shadows (RF_SHADOWS_FILTERED): the product, per channel, of the kt of every surface
+ * the ray crosses at t in [t_min, t_max), each seen from either side, in the order met (a
+ * sphere counts twice; two surfaces at exactly the same t once); (0, 0, 0) once the product is
+ * 0 in every channel (a surface with kt = 0 blocks). *last as rf_tracer_occluded_cached, for
+ * the primitives that block alone (kt = 0, outside instances). */
+RfRgb rf_tracer_transmittance_at(const RfTracer *tracer, RfRay ray, const RfMotionState *ms, double t_min,
+                                 double t_max, uint64_t *last);
 
 
 /* The self-intersection policy (numeric.h RF_RAY_OFFSET_REL): the hit point moved off the
@@ -224,7 +241,8 @@ RfVec3 rf_hit_offset_origin(const RfSurfaceHit *h, RfVec3 dir, double fixed_offs
 
 /* Everything besides the scene that decides a render's pixels, as one line for an image header
  * ("640x480, 16 spp stratified, filter box 0.5, depth 8, seed 1[, local only][, adaptive ...]
- * [, lens ...][, light samples N][, preview]"), the scene's settings resolved with the options.
+ * [, lens ...][, light samples N][, two-sided][, shadows filtered][, preview]"), the scene's
+ * settings resolved with the options.
  * Two renders of one scene with equal lines give the same pixels. 0 for options rf_render
  * would refuse. */
 int rf_render_describe(const RfScene *scene, const RfRenderOptions *opt, char *buf, size_t size);

@@ -58,6 +58,16 @@ RfWindow rf_scene_camera_window(const RfSceneCamera *cam, int width, int height)
 
 /* ---- render settings -------------------------------------------------------------------- */
 
+/* Shadow rays and transmitting surfaces (`shadows` in .rf, refray render --shadows). OPAQUE:
+ * every surface between a point and a light blocks it. FILTERED: as POV-Ray's shadow rays, the
+ * light goes straight on through every surface it crosses (no refraction, no Fresnel),
+ * multiplied per channel by that surface's kt at each crossing (a sphere: twice); a surface
+ * with kt = 0 blocks it. */
+typedef enum { RF_SHADOWS_OPAQUE = 0, RF_SHADOWS_FILTERED = 1 } RfShadowMode;
+/* "opaque", "filtered"; rf_shadow_mode_parse returns -1 for an unknown name. */
+const char *rf_shadow_mode_name(RfShadowMode m);
+int rf_shadow_mode_parse(const char *name);
+
 typedef struct {
     int width, height;
     int max_depth;           /* the primary ray is depth 1; no ray deeper than this is traced */
@@ -73,6 +83,7 @@ typedef struct {
     double adaptive_threshold; /* subdivide where neighbouring values differ by more (max channel) */
     int adaptive_depth;        /* at most this many subdivisions (4^depth samples a pixel) */
     double shutter_open, shutter_close; /* §3.10 the time interval of every sample path */
+    RfShadowMode shadows;      /* what a shadow ray does at a transmitting surface */
 } RfRenderSettings;
 
 /* ---- materials -------------------------------------------------------------------------- */

@@ -228,9 +228,9 @@ typedef struct {
 
 /* The leaf's triangles: the float filter, then the double watertight test for what is left.
  * any = 1: returns 1 at the first hit in [t_min, best->t). any = 0: improves *best by the
- * (t, key) rule and the triangles' sides; returns 1 when it did. */
+ * (t, key) rule and the triangles' sides (both = 1: either side counts); returns 1 when it did. */
 static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double t_min,
-                            RfBvhHit *best, int any)
+                            RfBvhHit *best, int any, int both)
 {
     int improved = 0;
     if (!r->tri_ready)
@@ -257,7 +257,7 @@ static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double 
             if (!(t < best->t || (t == best->t && key < best->key)))
                 continue;
             unsigned sides = blk->user[k] >> 30;
-            if (sides != RF_BVH_SEE_BOTH) {
+            if (sides != RF_BVH_SEE_BOTH && !both) {
                 RfVec3 nrm = rf_triangle_unit_normal(&blk->tri[k]);
                 int front = rf_vec3_dot(r->ray.dir, nrm) < 0.0;
                 if (front != (sides == RF_BVH_SEE_FRONT))
@@ -305,7 +305,7 @@ static inline int sphere_hit(const RfBvhOther *o, const RfRay *ray, double t_min
 }
 
 static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r, double t_min,
-                              RfBvhHit *best, RfBvhItemFn fn, void *ctx, int any)
+                              RfBvhHit *best, RfBvhItemFn fn, void *ctx, int any, int both)
 {
     int improved = 0;
     const RfBvhOther *o = &bvh->others[REF_FIRST(ref)], *end = o + REF_COUNT(ref);
@@ -313,7 +313,7 @@ static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r,
         double t;
         if (o->kind == RF_BVH_SPHERE) {
             RfSphereRoots roots;
-            int root = sphere_hit(o, &r->ray, t_min, best->t, any ? 0 : best->key, any, &t, &roots);
+            int root = sphere_hit(o, &r->ray, t_min, best->t, any ? 0 : best->key, any || both, &t, &roots);
             if (!root)
                 continue;
             if (any) {
@@ -346,7 +346,7 @@ static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r,
 }
 
 static inline int traverse(const RfBvh *bvh, RfBvhRay *r, double t_min, RfBvhHit *best,
-                           RfBvhItemFn fn, void *ctx, int any)
+                           RfBvhItemFn fn, void *ctx, int any, int both)
 {
     if (bvh->node_count == 0)
         return 0;
@@ -395,8 +395,8 @@ static inline int traverse(const RfBvh *bvh, RfBvhRay *r, double t_min, RfBvhHit
                 continue;
             }
         } else if (REF_KIND(cur) != KIND_EMPTY) {
-            int hit = REF_KIND(cur) == KIND_TRIS ? leaf_tris(bvh, cur, r, t_min, best, any)
-                                                 : leaf_others(bvh, cur, r, t_min, best, fn, ctx, any);
+            int hit = REF_KIND(cur) == KIND_TRIS ? leaf_tris(bvh, cur, r, t_min, best, any, both)
+                                                 : leaf_others(bvh, cur, r, t_min, best, fn, ctx, any, both);
             if (hit) {
                 if (any)
                     return 1;
@@ -419,7 +419,13 @@ static inline int traverse(const RfBvh *bvh, RfBvhRay *r, double t_min, RfBvhHit
 int rf_bvh_nearest(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best,
                    RfBvhItemFn fn, void *ctx)
 {
-    return traverse(bvh, ray, t_min, best, fn, ctx, 0);
+    return traverse(bvh, ray, t_min, best, fn, ctx, 0, 0);
+}
+
+int rf_bvh_nearest_any_side(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best,
+                            RfBvhItemFn fn, void *ctx)
+{
+    return traverse(bvh, ray, t_min, best, fn, ctx, 0, 1);
 }
 
 int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,
@@ -428,7 +434,7 @@ int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,
     RfBvhHit lim;
     memset(&lim, 0, sizeof lim);
     lim.t = t_max;
-    int hit = traverse(bvh, ray, t_min, &lim, fn, ctx, 1);
+    int hit = traverse(bvh, ray, t_min, &lim, fn, ctx, 1, 0);
     if (hit && key)
         *key = lim.key;
     return hit;

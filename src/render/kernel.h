@@ -80,6 +80,7 @@ typedef struct {
     const RfKernelLight *lights;
     int light_count;
     int max_depth, local_only;
+    int filtered_shadows;           /* RF_SHADOWS_FILTERED, and some surface transmits */
     double min_contribution, fixed_offset;
     RfRgb background, ambient;
     RfCamera camera;

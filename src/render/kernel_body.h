@@ -20,8 +20,9 @@
 static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, int depth, double weight,
                              RfRenderStats *st, uint64_t *shadow_cache, const RfPathSample *ps);
 
-/* One light sample's §3.6.2 Phong term at the hit: the shadow ray to the light (§3.8, opaque
- * shadows) and the diffuse and specular terms. 0 when the light does not reach the point. */
+/* One light sample's §3.6.2 Phong term at the hit: the shadow ray to the light (§3.8; opaque
+ * shadows, or filtered by the kt of the surfaces it crosses) and the diffuse and specular terms.
+ * 0 when the light does not reach the point. */
 static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHit *h, const RfMaterial *m,
                                        RfVec3 n, RfVec3 v, const RfLightSample *ls, RfRenderStats *st,
                                        uint64_t *cache, const RfPathSample *ps, int li, int j, int depth, RfRgb *term)
@@ -31,8 +32,9 @@ static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHi
         memset(&ev, 0, sizeof ev);
         ev.kind = RF_TRACE_LIGHT, ev.depth = depth, ev.sample = (int)ps->k, ev.samples = (int)ps->n;
         ev.light = li, ev.light_sample = j, ev.l = ls->l, ev.distance = ls->distance, ev.intensity = ls->i;
-        ev.n_dot_l = rf_vec3_dot(n, ls->l), ev.visible = -1;
+        ev.n_dot_l = rf_vec3_dot(n, ls->l), ev.visible = -1, ev.transmittance = rf_rgb(1, 1, 1);
     }
+    RfRgb i = ls->i; /* the light's intensity at the point (filtered shadows: what comes through) */
     if (rf_kernel_rgb_max(ls->i) <= 0.0)
         return 0;
     if (rf_vec3_dot(h->normal, ls->l) <= 0.0) { /* the light is behind the surface */
@@ -46,8 +48,21 @@ static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHi
                                           : rf_vec3_length(rf_vec3_sub(rf_vec3_add(h->point,
                                                 rf_vec3_scale(ls->l, ls->distance)), sr.origin));
         st->shadow_rays++;
-        if (RF_ON(RF_K_MOTION) ? rf_tracer_occluded_cached_at(job->tracer, sr, ps->motion, 0.0, dist, cache)
-                               : rf_tracer_occluded_cached(job->tracer, sr, 0.0, dist, cache)) {
+        if (job->filtered_shadows) { /* the light through the transmitting surfaces on the way */
+            RfRgb tr = rf_tracer_transmittance_at(job->tracer, sr, RF_ON(RF_K_MOTION) ? ps->motion : NULL, 0.0,
+                                                  dist, cache);
+            if (RF_TRACE_ON(ps))
+                ev.transmittance = tr;
+            if (!(rf_kernel_rgb_max(tr) > 0.0)) {
+                if (RF_TRACE_ON(ps)) {
+                    ev.visible = 0;
+                    ps->log->trace(ps->log->trace_ctx, &ev);
+                }
+                return 0;
+            }
+            i = rf_rgb_mul(i, tr);
+        } else if (RF_ON(RF_K_MOTION) ? rf_tracer_occluded_cached_at(job->tracer, sr, ps->motion, 0.0, dist, cache)
+                                      : rf_tracer_occluded_cached(job->tracer, sr, 0.0, dist, cache)) {
             if (RF_TRACE_ON(ps)) {
                 ev.visible = 0;
                 ps->log->trace(ps->log->trace_ctx, &ev);
@@ -58,12 +73,12 @@ static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHi
     /* §3.6.2 Phong, as rf_phong: only positive scalar products contribute */
     double nl = rf_vec3_dot(n, ls->l);
     double diff = nl > 0.0 ? nl : 0.0;
-    RfRgb diffuse = rf_rgb_scale(rf_rgb_mul(m->kd, ls->i), diff);
+    RfRgb diffuse = rf_rgb_scale(rf_rgb_mul(m->kd, i), diff);
     if (RF_ON(RF_K_SPECULAR)) {
         /* without a highlight (ks = 0) the power would only multiply a zero */
         double rv = job->highlight[h->material] ? rf_vec3_dot(rf_reflect(n, ls->l), v) : 0.0;
         double spec = nl > 0.0 && rv > 0.0 ? pow(rv, m->shininess) : 0.0;
-        RfRgb specular = rf_rgb_scale(rf_rgb_mul(m->ks, ls->i), spec);
+        RfRgb specular = rf_rgb_scale(rf_rgb_mul(m->ks, i), spec);
         *term = rf_rgb_add(diffuse, specular);
         if (RF_TRACE_ON(ps))
             ev.specular = specular;

@@ -22,6 +22,7 @@ RfRenderOptions rf_render_options_default(void)
     o.filter = -1;
     o.aperture = NAN;
     o.focus = NAN;
+    o.shadows = -1;
     return o;
 }
 
@@ -39,6 +40,7 @@ typedef struct {
     double adaptive_threshold;
     RfFilter filter;
     double aperture, focus;
+    RfShadowMode shadows;
 } Resolved;
 
 static int resolve(const RfScene *scene, const RfRenderOptions *opt, Resolved *r)
@@ -57,7 +59,8 @@ static int resolve(const RfScene *scene, const RfRenderOptions *opt, Resolved *r
         r->filter.radius = opt->filter_radius;
     r->aperture = isnan(opt->aperture) ? scene->camera.aperture : opt->aperture;
     r->focus = isnan(opt->focus) ? scene->camera.focus : opt->focus;
-    return r->max_depth > 0 && (unsigned)r->sampler < RF_SAMPLER_COUNT && (unsigned)r->filter.kind < RF_FILTER_COUNT &&
+    r->shadows = opt->shadows >= 0 ? (RfShadowMode)opt->shadows : rs->shadows;
+    return (r->shadows == RF_SHADOWS_OPAQUE || r->shadows == RF_SHADOWS_FILTERED) && r->max_depth > 0 && (unsigned)r->sampler < RF_SAMPLER_COUNT && (unsigned)r->filter.kind < RF_FILTER_COUNT &&
            r->filter.radius > 0.0 && r->adaptive_depth <= 8 && r->aperture >= 0.0 && isfinite(r->aperture) &&
            (r->aperture == 0.0 || (r->focus > 0.0 && isfinite(r->focus)));
 }
@@ -186,6 +189,10 @@ int rf_render_describe(const RfScene *scene, const RfRenderOptions *opt, char *b
         n += (size_t)snprintf(buf + n, size - n, ", lens aperture %.17g focus %.17g", r.aperture, r.focus);
     if (opt->light_samples > 0 && n < size)
         n += (size_t)snprintf(buf + n, size - n, ", light samples %d", opt->light_samples);
+    if (opt->two_sided && n < size)
+        n += (size_t)snprintf(buf + n, size - n, ", two-sided");
+    if (r.shadows == RF_SHADOWS_FILTERED && n < size)
+        n += (size_t)snprintf(buf + n, size - n, ", shadows filtered");
     if (opt->preview && n < size)
         n += (size_t)snprintf(buf + n, size - n, ", preview");
     return n < size;
@@ -308,6 +315,10 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     job->shutter_close = scene->render.shutter_close;
     job->moving = (rf_scene_features(scene) & RF_FEAT_MOTION) != 0;
     job->local_only = opt->local_only;
+    /* filtered shadows differ from opaque ones only where some surface transmits: elsewhere
+     * every crossing has kt = 0 and blocks, so the opaque query (one any-hit, cached) gives the
+     * same image */
+    job->filtered_shadows = res.shadows == RF_SHADOWS_FILTERED && (rf_scene_features(scene) & RF_FEAT_TRANSMISSION);
     job->fixed_offset = opt->fixed_offset;
     job->seed = opt->seed;
     job->min_contribution = scene->render.min_contribution;
@@ -382,6 +393,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     RfTracerOptions topt = opt->accel;
     if (topt.threads <= 0)
         topt.threads = threads;
+    topt.two_sided = opt->two_sided;
     struct timespec t0, t1, t2;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     st = rf_tracer_create_opts(scene, &topt, &tracer);

@@ -190,9 +190,9 @@ static int prim_smooth(const RfScene *s, const RfPrimitive *p)
     return (p->flags & RF_PRIM_VERTEX_NORMALS) && (s->materials[p->material].flags & RF_MAT_SMOOTH);
 }
 
-static int prim_sides(const RfPrimitive *p)
+static int prim_sides(const RfTracer *t, const RfPrimitive *p)
 {
-    return (p->flags & RF_PRIM_TWO_SIDED) ? RF_BVH_SEE_BOTH
+    return (p->flags & RF_PRIM_TWO_SIDED) || t->opt.two_sided ? RF_BVH_SEE_BOTH
            : (p->flags & RF_PRIM_INSIDE)  ? RF_BVH_SEE_BACK
                                           : RF_BVH_SEE_FRONT;
 }
@@ -205,7 +205,7 @@ static void describe_item(void *ctx, int j, RfBvhItem *out)
     Item it = d->level->items[d->level->bvh_items[j]];
     const RfPrimitive *p = &s->prims[it.prim];
     out->key = item_key(it);
-    out->sides = prim_sides(p);
+    out->sides = prim_sides(d->tracer, p);
     out->user = (uint32_t)p->material;
     if (item_is_triangle(s, it)) {
         out->kind = RF_BVH_TRIANGLE;
@@ -411,6 +411,8 @@ static double max_abs3(RfVec3 v)
 typedef struct {
     const RfTracer *tracer;
     int shadow;         /* any-hit: every surface blocks, whichever side */
+    int both;           /* nearest-hit: every surface counts, whichever side (RfTracerOptions.two_sided,
+                           filtered shadow rays) */
     Item item;          /* the item hit (inside instances: the object's primitive) */
     int material;       /* its material */
     int smooth;         /* it interpolates vertex normals */
@@ -548,6 +550,7 @@ static int hit_instance(Query *q, const RfPrimitive *p, RfRay ray, double t_min,
     Query sub;
     sub.tracer = tr;
     sub.shadow = q->shadow;
+    sub.both = q->both;
     sub.instanced = 0;
     sub.motion = q->motion;
     double tm = t_max;
@@ -607,7 +610,7 @@ again:
     }
     if (!ok)
         return 0;
-    if (!q->shadow && !(p->flags & RF_PRIM_TWO_SIDED)) {
+    if (!q->shadow && !q->both && !(p->flags & RF_PRIM_TWO_SIDED)) {
         /* one-sided: visible only from the front (outside, counter-clockwise side), or only
          * from the inside for RF_PRIM_INSIDE */
         int front = rf_vec3_dot(ray.dir, h.normal) < 0.0;
@@ -687,7 +690,8 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
         }
         best.t = bt;
         best.key = bk;
-        if (rf_bvh_nearest(&lv->bvh, &br, t_min, &best, bvh_item, q)) {
+        if (q->both ? rf_bvh_nearest_any_side(&lv->bvh, &br, t_min, &best, bvh_item, q)
+                    : rf_bvh_nearest(&lv->bvh, &br, t_min, &best, bvh_item, q)) {
             bt = best.t;
             bk = best.key;
             found = 1;
@@ -726,6 +730,7 @@ int rf_tracer_occluded(const RfTracer *t, RfRay ray, double t_min, double t_max)
 {
     Query q;
     q.shadow = 1;
+    q.both = 0;
     q.motion = NULL;
     return trace_query(t, &q, ray, t_min, t_max);
 }
@@ -741,6 +746,7 @@ int rf_tracer_occluded_cached_at(const RfTracer *t, RfRay ray, const RfMotionSta
     Query q;
     q.tracer = t;
     q.shadow = 1;
+    q.both = 0;
     q.instanced = 0;
     q.motion = ms;
     if (*last) { /* the occluder of the last query first: neighbouring shadow rays share it */
@@ -756,6 +762,38 @@ int rf_tracer_occluded_cached_at(const RfTracer *t, RfRay ray, const RfMotionSta
     return 1;
 }
 
+RfRgb rf_tracer_transmittance_at(const RfTracer *t, RfRay ray, const RfMotionState *ms, double t_min, double t_max,
+                                 uint64_t *last)
+{
+    const RfRgb zero = rf_rgb(0, 0, 0);
+    Query q;
+    q.tracer = t;
+    q.shadow = 1;
+    q.both = 0;
+    q.instanced = 0;
+    q.motion = ms;
+    /* the last primitive that blocked alone: any hit on it gives 0, as the walk would */
+    if (*last && hit_item(&q, key_item(*last), ray, NULL, t_min, t_max, &(double){0}))
+        return zero;
+    RfRgb tr = rf_rgb(1, 1, 1);
+    q.shadow = 0;
+    q.both = 1;
+    /* POV-Ray's walk: the nearest crossing, its kt, on from just beyond it */
+    while (t_min < t_max && trace_query(t, &q, ray, t_min, t_max)) {
+        RfRgb kt = t->scene->materials[q.material].kt;
+        tr = rf_rgb_mul(tr, kt);
+        if (!(tr.r > 0.0 || tr.g > 0.0 || tr.b > 0.0)) {
+            const RfPrimitive *p = &t->scene->prims[q.item.prim];
+            int alone = !(kt.r > 0.0 || kt.g > 0.0 || kt.b > 0.0) && !q.instanced && p->type != RF_PRIM_INSTANCE;
+            *last = alone ? item_key(q.item) : 0;
+            return zero;
+        }
+        t_min = nextafter(q.hit.t, HUGE_VAL);
+    }
+    *last = 0;
+    return tr;
+}
+
 int rf_tracer_intersect(const RfTracer *t, RfRay ray, double t_min, double t_max, RfSurfaceHit *out)
 {
     return rf_tracer_intersect_at(t, ray, NULL, t_min, t_max, out);
@@ -766,6 +804,7 @@ int rf_tracer_intersect_at(const RfTracer *t, RfRay ray, const RfMotionState *ms
 {
     Query q;
     q.shadow = 0;
+    q.both = t->opt.two_sided;
     q.motion = ms;
     if (!trace_query(t, &q, ray, t_min, t_max))
         return -1;

@@ -853,7 +853,11 @@ static RfStatus read_statement(RfReader *r, const RfToken *kw)
         return read_sampler(r, kw);
     else if (rf_lex_is(kw, "filter"))
         return read_filter(r, kw);
-    else if (rf_lex_is(kw, "shutter")) {
+    else if (rf_lex_is(kw, "shadows")) {
+        int m;
+        if (!(st = read_choice(lx, "shadow mode", "opaque, filtered", rf_shadow_mode_parse, &m)))
+            rs->shadows = (RfShadowMode)m;
+    } else if (rf_lex_is(kw, "shutter")) {
         if (!(st = rf_lex_number(lx, "shutter open", &rs->shutter_open)) &&
             !(st = rf_lex_number(lx, "shutter close", &rs->shutter_close)))
             st = rf_lex_check(lx, rs->shutter_open <= rs->shutter_close, "shutter needs open <= close");

@@ -27,6 +27,13 @@ RfStatus rf__msgf(char *msg, size_t msgsz, RfStatus st, const char *fmt, ...)
 
 static int positive(RfRgb c) { return c.r > 0.0 || c.g > 0.0 || c.b > 0.0; }
 
+const char *rf_shadow_mode_name(RfShadowMode m) { return m == RF_SHADOWS_FILTERED ? "filtered" : "opaque"; }
+
+int rf_shadow_mode_parse(const char *name)
+{
+    return strcmp(name, "opaque") == 0 ? RF_SHADOWS_OPAQUE : strcmp(name, "filtered") == 0 ? RF_SHADOWS_FILTERED : -1;
+}
+
 /* ---- allocation --------------------------------------------------------------------------- */
 
 void rf_scene_init(RfScene *scene)

@@ -63,7 +63,8 @@ RfStatus rf_scene_validate(const RfScene *scene, const char *source, char *err, 
         (unsigned)r->filter.kind >= RF_FILTER_COUNT || !(r->filter.radius > 0.0 && r->filter.radius <= 16.0) ||
         !(r->filter.sigma > 0.0 || r->filter.kind != RF_FILTER_GAUSSIAN) || !(r->adaptive_threshold >= 0.0) ||
         r->adaptive_depth < 0 || r->adaptive_depth > 8 || !isfinite(r->shutter_open) ||
-        !isfinite(r->shutter_close) || !(r->shutter_open <= r->shutter_close))
+        !isfinite(r->shutter_close) || !(r->shutter_open <= r->shutter_close) ||
+        (r->shadows != RF_SHADOWS_OPAQUE && r->shadows != RF_SHADOWS_FILTERED))
         return located(err, errsz, source, loc, "render settings out of range", RF_ERR_DOMAIN);
     for (size_t i = 0; i < scene->material_count; i++)
         if ((st = check_material(&scene->materials[i], msg, sizeof msg)))
