@@ -41,6 +41,10 @@ typedef struct RfWriteBatch RfWriteBatch;
 RfWriteBatch *rf_write_batch_new(void);
 RfStatus rf_write_batch_commit(RfWriteBatch *batch, char *err, size_t err_size); /* frees the batch */
 void rf_write_batch_abort(RfWriteBatch *batch);                                   /* frees the batch */
+/* A text file (len bytes) written under a temporary name and renamed into place, or with a
+ * batch renamed at rf_write_batch_commit (src/io/textfile.c). */
+RfStatus rf_write_text(const char *path, const char *text, size_t len, RfWriteBatch *batch, char *err,
+                       size_t err_size);
 
 typedef struct {
     RfPngEncoding encoding;

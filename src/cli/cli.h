@@ -13,5 +13,6 @@ int rf_cmd_merge(int argc, char **argv);
 int rf_cmd_trace(int argc, char **argv);
 int rf_cmd_diff(int argc, char **argv);
 int rf_cmd_bench(int argc, char **argv);
+int rf_cmd_export(int argc, char **argv);
 
 #endif

@@ -22,6 +22,7 @@ static const Command commands[] = {
     {"diff", rf_cmd_diff, "compare two images (EXR/PNG): errors, silhouettes, heatmap; exits like idiff"},
     {"bench", rf_cmd_bench, "run time against error: samplers x sample counts, time to relMSE 1e-3"},
     {"info", rf_cmd_info, "load a scene (.nff, .rf, .obj): counts, materials, lights, features used"},
+    {"export", rf_cmd_export, "write a scene for Mitsuba 3, pbrt-v4 or POV-Ray, conversions documented (make crosscheck)"},
 };
 
 static void usage(FILE *out)

@@ -226,11 +226,16 @@ typedef struct {
     uint32_t ref;
 } Entry;
 
+/* What a traversal looks for: the nearest hit by the (t, key) rule and the items' sides, any
+ * hit (occlusion), or the nearest hit with every side seen. One mode argument, not two flags:
+ * the traversal keeps no more live values than it did with one. */
+enum { NEAREST = 0, ANY = 1, ANY_SIDE = 2 };
+
 /* The leaf's triangles: the float filter, then the double watertight test for what is left.
- * any = 1: returns 1 at the first hit in [t_min, best->t). any = 0: improves *best by the
- * (t, key) rule and the triangles' sides (both = 1: either side counts); returns 1 when it did. */
+ * ANY: returns 1 at the first hit in [t_min, best->t). Otherwise improves *best by the
+ * (t, key) rule and the triangles' sides (ANY_SIDE: either side counts); returns 1 when it did. */
 static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double t_min,
-                            RfBvhHit *best, int any, int both)
+                            RfBvhHit *best, int mode)
 {
     int improved = 0;
     if (!r->tri_ready)
@@ -247,7 +252,7 @@ static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double 
             double t;
             if (key == 0 || !rf_watertight_t(&r->wr, &blk->tri[k], &t) || !(t >= t_min))
                 continue;
-            if (any) {
+            if (mode == ANY) {
                 if (t < best->t) {
                     best->key = key;
                     return 1;
@@ -257,7 +262,7 @@ static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double 
             if (!(t < best->t || (t == best->t && key < best->key)))
                 continue;
             unsigned sides = blk->user[k] >> 30;
-            if (sides != RF_BVH_SEE_BOTH && !both) {
+            if (mode == NEAREST && sides != RF_BVH_SEE_BOTH) {
                 RfVec3 nrm = rf_triangle_unit_normal(&blk->tri[k]);
                 int front = rf_vec3_dot(r->ray.dir, nrm) < 0.0;
                 if (front != (sides == RF_BVH_SEE_FRONT))
@@ -276,10 +281,10 @@ static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double 
 
 /* A sphere of an "others" leaf, by the rules the tracer applies to every item: the first root at
  * t >= t_min within the limit (t < lim, or t <= lim for a key below lim_key) whose side the
- * sphere shows (a hidden side passes the ray on to the far root; any = 1: either side). Returns
- * the root + 1 (1 near, 2 far) or 0, and its t. */
+ * sphere shows (a hidden side passes the ray on to the far root; modes other than NEAREST: either
+ * side). Returns the root + 1 (1 near, 2 far) or 0, and its t. */
 static inline int sphere_hit(const RfBvhOther *o, const RfRay *ray, double t_min, double lim, uint64_t lim_key,
-                             int any, double *t, RfSphereRoots *roots)
+                             int mode, double *t, RfSphereRoots *roots)
 {
     RfSphereRoots r;
     if (!rf_sphere_roots(*ray, o->sphere, &r))
@@ -290,7 +295,7 @@ static inline int sphere_hit(const RfBvhOther *o, const RfRay *ray, double t_min
         double tc = r.t[c];
         if (!(tc >= lo && (tc < lim || (tc == lim && o->key < lim_key))))
             continue;
-        if (!any && sides != RF_BVH_SEE_BOTH) {
+        if (mode == NEAREST && sides != RF_BVH_SEE_BOTH) {
             int front = rf_vec3_dot(ray->dir, rf_sphere_root_normal(&r, *ray, o->sphere, c)) < 0.0;
             if (front == (sides == RF_BVH_SEE_BACK)) { /* the hidden side: look beyond it */
                 lo = nextafter(tc, HUGE_VAL);
@@ -305,7 +310,7 @@ static inline int sphere_hit(const RfBvhOther *o, const RfRay *ray, double t_min
 }
 
 static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r, double t_min,
-                              RfBvhHit *best, RfBvhItemFn fn, void *ctx, int any, int both)
+                              RfBvhHit *best, RfBvhItemFn fn, void *ctx, int mode)
 {
     int improved = 0;
     const RfBvhOther *o = &bvh->others[REF_FIRST(ref)], *end = o + REF_COUNT(ref);
@@ -313,10 +318,10 @@ static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r,
         double t;
         if (o->kind == RF_BVH_SPHERE) {
             RfSphereRoots roots;
-            int root = sphere_hit(o, &r->ray, t_min, best->t, any ? 0 : best->key, any || both, &t, &roots);
+            int root = sphere_hit(o, &r->ray, t_min, best->t, mode == ANY ? 0 : best->key, mode, &t, &roots);
             if (!root)
                 continue;
-            if (any) {
+            if (mode == ANY) {
                 best->key = o->key;
                 return 1;
             }
@@ -330,9 +335,9 @@ static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r,
             improved = 1;
             continue;
         }
-        if (!fn(ctx, o->key, r, t_min, best->t, !any && o->key < best->key, &t))
+        if (!fn(ctx, o->key, r, t_min, best->t, mode != ANY && o->key < best->key, &t))
             continue;
-        if (any) {
+        if (mode == ANY) {
             best->key = o->key;
             return 1;
         }
@@ -346,7 +351,7 @@ static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r,
 }
 
 static inline int traverse(const RfBvh *bvh, RfBvhRay *r, double t_min, RfBvhHit *best,
-                           RfBvhItemFn fn, void *ctx, int any, int both)
+                           RfBvhItemFn fn, void *ctx, int mode)
 {
     if (bvh->node_count == 0)
         return 0;
@@ -395,10 +400,10 @@ static inline int traverse(const RfBvh *bvh, RfBvhRay *r, double t_min, RfBvhHit
                 continue;
             }
         } else if (REF_KIND(cur) != KIND_EMPTY) {
-            int hit = REF_KIND(cur) == KIND_TRIS ? leaf_tris(bvh, cur, r, t_min, best, any, both)
-                                                 : leaf_others(bvh, cur, r, t_min, best, fn, ctx, any, both);
+            int hit = REF_KIND(cur) == KIND_TRIS ? leaf_tris(bvh, cur, r, t_min, best, mode)
+                                                 : leaf_others(bvh, cur, r, t_min, best, fn, ctx, mode);
             if (hit) {
-                if (any)
+                if (mode == ANY)
                     return 1;
                 found = 1;
                 tmax = rf__widen_up(best->t);
@@ -419,13 +424,13 @@ static inline int traverse(const RfBvh *bvh, RfBvhRay *r, double t_min, RfBvhHit
 int rf_bvh_nearest(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best,
                    RfBvhItemFn fn, void *ctx)
 {
-    return traverse(bvh, ray, t_min, best, fn, ctx, 0, 0);
+    return traverse(bvh, ray, t_min, best, fn, ctx, NEAREST);
 }
 
 int rf_bvh_nearest_any_side(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best,
                             RfBvhItemFn fn, void *ctx)
 {
-    return traverse(bvh, ray, t_min, best, fn, ctx, 0, 1);
+    return traverse(bvh, ray, t_min, best, fn, ctx, ANY_SIDE);
 }
 
 int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,
@@ -434,7 +439,7 @@ int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,
     RfBvhHit lim;
     memset(&lim, 0, sizeof lim);
     lim.t = t_max;
-    int hit = traverse(bvh, ray, t_min, &lim, fn, ctx, 1, 0);
+    int hit = traverse(bvh, ray, t_min, &lim, fn, ctx, ANY);
     if (hit && key)
         *key = lim.key;
     return hit;

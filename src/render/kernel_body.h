@@ -34,7 +34,7 @@ static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHi
         ev.light = li, ev.light_sample = j, ev.l = ls->l, ev.distance = ls->distance, ev.intensity = ls->i;
         ev.n_dot_l = rf_vec3_dot(n, ls->l), ev.visible = -1, ev.transmittance = rf_rgb(1, 1, 1);
     }
-    RfRgb i = ls->i; /* the light's intensity at the point (filtered shadows: what comes through) */
+    RfLightSample through; /* filtered shadows: the light that comes through */
     if (rf_kernel_rgb_max(ls->i) <= 0.0)
         return 0;
     if (rf_vec3_dot(h->normal, ls->l) <= 0.0) { /* the light is behind the surface */
@@ -60,7 +60,9 @@ static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHi
                 }
                 return 0;
             }
-            i = rf_rgb_mul(i, tr);
+            through = *ls;
+            through.i = rf_rgb_mul(ls->i, tr);
+            ls = &through;
         } else if (RF_ON(RF_K_MOTION) ? rf_tracer_occluded_cached_at(job->tracer, sr, ps->motion, 0.0, dist, cache)
                                       : rf_tracer_occluded_cached(job->tracer, sr, 0.0, dist, cache)) {
             if (RF_TRACE_ON(ps)) {
@@ -73,12 +75,12 @@ static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHi
     /* §3.6.2 Phong, as rf_phong: only positive scalar products contribute */
     double nl = rf_vec3_dot(n, ls->l);
     double diff = nl > 0.0 ? nl : 0.0;
-    RfRgb diffuse = rf_rgb_scale(rf_rgb_mul(m->kd, i), diff);
+    RfRgb diffuse = rf_rgb_scale(rf_rgb_mul(m->kd, ls->i), diff);
     if (RF_ON(RF_K_SPECULAR)) {
         /* without a highlight (ks = 0) the power would only multiply a zero */
         double rv = job->highlight[h->material] ? rf_vec3_dot(rf_reflect(n, ls->l), v) : 0.0;
         double spec = nl > 0.0 && rv > 0.0 ? pow(rv, m->shininess) : 0.0;
-        RfRgb specular = rf_rgb_scale(rf_rgb_mul(m->ks, i), spec);
+        RfRgb specular = rf_rgb_scale(rf_rgb_mul(m->ks, ls->i), spec);
         *term = rf_rgb_add(diffuse, specular);
         if (RF_TRACE_ON(ps))
             ev.specular = specular;

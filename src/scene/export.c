@@ -1,0 +1,339 @@
+/* The scene exporters' shared part (export_internal.h): buffers, notes, numbers, the camera,
+ * the checks every target shares, and rf_scene_export, which picks the writer. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "export_internal.h"
+
+RfExportOptions rf_export_options_default(void)
+{
+    RfExportOptions o;
+    memset(&o, 0, sizeof o);
+    o.format = RF_EXPORT_MITSUBA;
+    return o;
+}
+
+const char *rf_export_format_name(RfExportFormat f)
+{
+    return f == RF_EXPORT_MITSUBA ? "Mitsuba 3" : f == RF_EXPORT_PBRT ? "pbrt-v4" : "POV-Ray 3.7";
+}
+
+/* Appends a formatted text to a growing NUL-terminated buffer. */
+static int append_v(char **buf, size_t *len, size_t *cap, const char *fmt, va_list ap)
+{
+    va_list aq;
+    va_copy(aq, ap);
+    int n = vsnprintf(NULL, 0, fmt, aq);
+    va_end(aq);
+    if (n < 0)
+        return -1;
+    if (*len + (size_t)n + 1 > *cap) {
+        size_t cap2 = *cap ? *cap : 4096;
+        while (*len + (size_t)n + 1 > cap2)
+            cap2 *= 2;
+        char *b = realloc(*buf, cap2);
+        if (!b)
+            return -1;
+        *buf = b;
+        *cap = cap2;
+    }
+    vsnprintf(*buf + *len, *cap - *len, fmt, ap);
+    *len += (size_t)n;
+    return 0;
+}
+
+void rf__ex_printf(RfExCtx *c, const char *fmt, ...)
+{
+    if (!c->out || c->ex->failed)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    if (append_v(&c->out->text, &c->out->len, &c->out->cap, fmt, ap))
+        c->ex->failed = 1;
+    va_end(ap);
+}
+
+RfExportFile *rf__ex_file(RfExCtx *c, const char *path)
+{
+    RfExport *ex = c->ex;
+    RfExportFile *f = realloc(ex->files, sizeof *f * (ex->file_count + 1));
+    char *p = strdup(path);
+    if (!f || !p) {
+        if (f)
+            ex->files = f;
+        free(p);
+        ex->failed = 1;
+        c->out = NULL;
+        return NULL;
+    }
+    ex->files = f;
+    f += ex->file_count++;
+    memset(f, 0, sizeof *f);
+    f->path = p;
+    c->out = f;
+    return f;
+}
+
+void rf__ex_note(RfExCtx *c, RfSrcLoc loc, int problem, const char *fmt, ...)
+{
+    RfExport *ex = c->ex;
+    char head[512];
+    const char *src = c->o->source ? c->o->source : "scene";
+    if (loc.line > 0)
+        snprintf(head, sizeof head, "%s:%d:%d: ", src, loc.line, loc.col);
+    else
+        snprintf(head, sizeof head, "%s: ", src);
+    va_list ap;
+    va_start(ap, fmt);
+    char body[1024];
+    vsnprintf(body, sizeof body, fmt, ap);
+    va_end(ap);
+    char line[1600];
+    snprintf(line, sizeof line, "%s%s%s\n", head, body,
+             problem ? (c->o->lossy ? " (written approximately: --lossy)" : "") : "");
+    if (problem)
+        ex->problems++;
+    size_t n = strlen(line);
+    if (ex->notes_len + n + 1 > ex->notes_cap) {
+        size_t cap = ex->notes_cap ? ex->notes_cap : 1024;
+        while (ex->notes_len + n + 1 > cap)
+            cap *= 2;
+        char *b = realloc(ex->notes, cap);
+        if (!b) {
+            ex->failed = 1;
+            return;
+        }
+        ex->notes = b;
+        ex->notes_cap = cap;
+    }
+    memcpy(ex->notes + ex->notes_len, line, n + 1);
+    ex->notes_len += n;
+}
+
+const char *rf__ex_num(RfExCtx *c, double x)
+{
+    char *b = c->ring[c->ring_next];
+    c->ring_next = (c->ring_next + 1) % RF_EX_RING;
+    if (x == 0.0) /* no "-0" in another renderer's file */
+        x = 0.0;
+    for (int p = 15; p <= 17; p++) {
+        snprintf(b, sizeof c->ring[0], "%.*g", p, x);
+        if (strtod(b, NULL) == x)
+            break;
+    }
+    return b;
+}
+
+const char *rf__ex_vec(RfExCtx *c, RfVec3 v, const char *sep)
+{
+    char a[3][40];
+    double x[3] = {v.x, v.y, v.z};
+    for (int i = 0; i < 3; i++)
+        snprintf(a[i], sizeof a[i], "%s", rf__ex_num(c, x[i]));
+    char *b = c->ring[c->ring_next];
+    c->ring_next = (c->ring_next + 1) % RF_EX_RING;
+    snprintf(b, sizeof c->ring[0], "%s%s%s%s%s", a[0], sep, a[1], sep, a[2]);
+    return b;
+}
+
+const char *rf__ex_rgb(RfExCtx *c, RfRgb v, const char *sep)
+{
+    return rf__ex_vec(c, rf_vec3(v.r, v.g, v.b), sep);
+}
+
+static int positive(RfRgb c) { return c.r > 0.0 || c.g > 0.0 || c.b > 0.0; }
+
+RfExMat rf__ex_classify(const RfScene *s, const RfMaterial *m)
+{
+    RfExMat x;
+    x.diffuse = positive(m->kd);
+    x.highlight = rf_material_has_highlight(m);
+    x.mirror = positive(m->kr);
+    x.transmits = positive(m->kt);
+    x.fresnel = (m->flags & RF_MAT_FRESNEL) && (x.mirror || x.transmits);
+    x.ambient = positive(rf_rgb_mul(m->ka, s->render.ambient));
+    x.emits = positive(m->emission);
+    x.glossy = m->gloss > 0.0 && (x.mirror || x.transmits);
+    return x;
+}
+
+RfVec3 rf__ex_perpendicular(RfVec3 n)
+{
+    RfVec3 a = fabs(n.x) < 0.6 ? rf_vec3(1, 0, 0) : rf_vec3(0, 1, 0);
+    return rf_vec3_normalize(rf_vec3_cross(n, a));
+}
+
+void rf__ex_common_header(RfExCtx *c, const char *lead)
+{
+    const RfScene *s = c->s;
+    rf__ex_printf(c, "%swritten by `refray export` from %s for %s (docs/crosscheck.md derives every conversion)\n",
+                  lead, c->o->source ? c->o->source : "a scene", rf_export_format_name(c->o->format));
+    rf__ex_printf(c, "%simage %d x %d; refray's recursion depth %d (the primary ray is depth 1)\n", lead, c->width,
+                  c->height, c->depth);
+    if (!s->camera.has_window)
+        rf__ex_printf(c, "%scamera: refray's field of view %s deg measured %s gives the window\n", lead,
+                      rf__ex_num(c, s->camera.fov),
+                      s->camera.fov_reading == RF_FOV_EDGES ? "between the image edges"
+                                                            : "between the centres of the outermost pixels (NFF; "
+                                                              "refray --nff-fov centres): half-height d tan(fov/2) H/(H-1)");
+    rf__ex_printf(c, "%s  l %s r %s b %s t %s at d %s; right-handed: image right = view direction x up\n", lead,
+                  rf__ex_num(c, c->win.l), rf__ex_num(c, c->win.r), rf__ex_num(c, c->win.b), rf__ex_num(c, c->win.t),
+                  rf__ex_num(c, c->win.d));
+    rf__ex_printf(c, "%ssurfaces: %s\n", lead,
+                  c->o->two_sided ? "every one visible from both sides (refray --two-sided)"
+                                  : "as the scene says (one-sided ones are noted where the target differs)");
+    rf__ex_printf(c, "%sshadows of transmitting objects: %s\n", lead,
+                  c->o->filtered_shadows ? "filtered (compare with refray --shadows filtered)"
+                                         : "opaque (refray's default)");
+}
+
+void rf__ex_common_checks(RfExCtx *c, int area_ok, int lens_ok)
+{
+    const RfScene *s = c->s;
+    const char *to = rf_export_format_name(c->o->format);
+    /* only materials a primitive uses, each noted once */
+    unsigned char *used = calloc(s->material_count ? s->material_count : 1, 1);
+    if (!used) {
+        c->ex->failed = 1;
+        return;
+    }
+    for (size_t i = 0; i < s->prim_count; i++)
+        if (s->prims[i].type != RF_PRIM_INSTANCE && s->prims[i].material >= 0 &&
+            (size_t)s->prims[i].material < s->material_count)
+            used[s->prims[i].material] = 1;
+    for (size_t i = 0; i < s->material_count; i++) {
+        if (!used[i])
+            continue;
+        const RfMaterial *m = &s->materials[i];
+        RfExMat x = rf__ex_classify(s, m);
+        if (x.ambient)
+            rf__ex_note(c, m->loc, 1, "material '%s': ambient term ka * ambient light: %s has no ambient term "
+                        "(dropped)", m->name, to);
+        if (x.emits)
+            rf__ex_note(c, m->loc, 1, "material '%s': emission: refray adds it to the surface's radiance only, "
+                        "an emitter in %s would light other surfaces (dropped)", m->name, to);
+        if (x.glossy)
+            rf__ex_note(c, m->loc, 1, "material '%s': glossy %s: refray's cos^N lobe around the ideal ray has no "
+                        "counterpart in %s (written as ideal)", m->name, rf__ex_num(c, m->gloss), to);
+    }
+    free(used);
+    if (!area_ok)
+        for (size_t i = 0; i < s->light_count; i++)
+            if (rf_light_is_area(s->lights[i].kind))
+                rf__ex_note(c, s->lights[i].loc, 1, "light %zu: %s area light: %s has no area light with refray's "
+                            "sampling (written as a point light at its centre)", i,
+                            rf_light_kind_name(s->lights[i].kind), to);
+    if (!lens_ok && s->camera.aperture > 0.0)
+        rf__ex_note(c, s->camera.loc, 1, "camera: thin lens (aperture %s): %s's focal blur is another lens model "
+                    "(written as a pinhole)", rf__ex_num(c, s->camera.aperture), to);
+    if (s->render.samples > 1 && c->o->format == RF_EXPORT_POV)
+        rf__ex_note(c, s->camera.loc, 0,
+                    "%d samples per pixel: POV-Ray's anti-aliasing is its own (render refray with 1 sample and "
+                    "POV-Ray with -A to compare)", s->render.samples);
+}
+
+void rf__ex_check_hither(RfExCtx *c)
+{
+    const RfScene *s = c->s;
+    if (!(s->camera.hither > 0.0))
+        return;
+    /* nothing nearer than hither along the view axis: the near plane cuts nothing */
+    RfVec3 lo, hi;
+    int planes = 0;
+    for (size_t i = 0; i < s->prim_count; i++)
+        planes |= s->prims[i].type == RF_PRIM_PLANE && !(s->prims[i].flags & RF_PRIM_IN_OBJECT);
+    if (!planes && rf_scene_bounds(s, &lo, &hi)) {
+        double near = INFINITY;
+        for (int k = 0; k < 8; k++) {
+            RfVec3 p = rf_vec3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
+            near = fmin(near, -rf_vec3_dot(rf_vec3_sub(p, s->camera.eye), c->w));
+        }
+        if (near >= s->camera.hither)
+            return;
+    }
+    /* only a note: whether a primary ray meets something nearer is the render's question */
+    rf__ex_note(c, s->camera.loc, 0, "camera: hither %s: %s's camera has no near plane; the scene's bounds reach "
+                "nearer, so compare the images there with care", rf__ex_num(c, s->camera.hither),
+                rf_export_format_name(c->o->format));
+}
+
+/* The §3.4 basis: w = normalise(eye - target), u = normalise(up x w), v = w x u. */
+static void camera_basis(RfExCtx *c)
+{
+    const RfSceneCamera *cam = &c->s->camera;
+    c->w = rf_vec3_normalize(rf_vec3_sub(cam->eye, cam->target));
+    c->u = rf_vec3_normalize(rf_vec3_cross(cam->up, c->w));
+    c->v = rf_vec3_cross(c->w, c->u);
+}
+
+RfStatus rf_scene_export(const RfScene *scene, const RfExportOptions *opt, RfExport *ex)
+{
+    memset(ex, 0, sizeof *ex);
+    RfExCtx *c = calloc(1, sizeof *c);
+    if (!c)
+        return RF_ERR_NOMEM;
+    RfScene flat;
+    int flattened = 0;
+    c->o = opt;
+    c->ex = ex;
+    c->s = scene;
+    if (scene->instance_count > 0) {
+        char msg[256];
+        RfStatus st = rf_scene_flatten(scene, &flat, msg, sizeof msg);
+        if (st != RF_OK) {
+            RfSrcLoc none = {0, 0};
+            rf__ex_note(c, none, 1, "the scene graph cannot be written as plain primitives: %s", msg);
+            free(c);
+            return st == RF_ERR_NOMEM ? RF_ERR_NOMEM : RF_ERR_DOMAIN;
+        }
+        flattened = 1;
+        c->s = &flat;
+    }
+    c->width = opt->width > 0 ? opt->width : scene->render.width;
+    c->height = opt->height > 0 ? opt->height : scene->render.height;
+    c->depth = opt->depth > 0 ? opt->depth : scene->render.max_depth;
+    c->samples = opt->samples > 0 ? opt->samples : scene->render.samples;
+    c->win = rf_scene_camera_window(&scene->camera, c->width, c->height);
+    camera_basis(c);
+    if (scene->motion_count > 0) {
+        RfSrcLoc none = {0, 0};
+        rf__ex_note(c, none, 1, "motion blur: %zu moving instances (written at the shutter's opening)",
+                    scene->motion_count);
+    }
+    if (rf__ex_file(c, opt->output ? opt->output : "scene")) {
+        if (opt->format == RF_EXPORT_MITSUBA)
+            rf__export_mitsuba(c);
+        else if (opt->format == RF_EXPORT_PBRT)
+            rf__export_pbrt(c);
+        else
+            rf__export_pov(c);
+    }
+    RfStatus st = ex->failed ? RF_ERR_NOMEM : ex->problems && !opt->lossy ? RF_ERR_DOMAIN : RF_OK;
+    if (st != RF_OK) { /* nothing to write */
+        for (size_t i = 0; i < ex->file_count; i++) {
+            free(ex->files[i].path);
+            free(ex->files[i].text);
+        }
+        free(ex->files);
+        ex->files = NULL;
+        ex->file_count = 0;
+    }
+    if (flattened)
+        rf_scene_free(&flat);
+    free(c);
+    return st;
+}
+
+void rf_export_free(RfExport *ex)
+{
+    for (size_t i = 0; i < ex->file_count; i++) {
+        free(ex->files[i].path);
+        free(ex->files[i].text);
+    }
+    free(ex->files);
+    free(ex->notes);
+    memset(ex, 0, sizeof *ex);
+}

@@ -1,0 +1,80 @@
+/* refray: what the scene exporters share (internal; scene_export.h is the interface): the text
+ * buffers, the notes, numbers that read back as the same double, the camera window and basis,
+ * and the classification of a material into what the targets know. */
+#ifndef RF_SCENE_EXPORT_INTERNAL_H
+#define RF_SCENE_EXPORT_INTERNAL_H
+
+#include "refray/scene.h"
+#include "refray/scene_export.h"
+
+#define RF_EX_RING 16
+#define RF_EX_SLOT 160
+
+typedef struct {
+    const RfScene *s; /* the scene with its instances expanded */
+    const RfExportOptions *o;
+    RfExport *ex;
+    RfExportFile *out; /* the file being written */
+    int width, height, depth, samples;
+    RfWindow win;     /* the image window at distance win.d for width x height */
+    RfVec3 u, v, w;   /* the §3.4 camera basis: right, up, backward (w = normalise(eye - target)) */
+    char ring[RF_EX_RING][RF_EX_SLOT];
+    int ring_next;
+} RfExCtx;
+
+/* What a material does, in the terms the targets know. */
+typedef struct {
+    int diffuse;   /* kd > 0 */
+    int highlight; /* rf_material_has_highlight */
+    int mirror;    /* kr > 0 */
+    int transmits; /* kt > 0 */
+    int fresnel;   /* RF_MAT_FRESNEL with kr or kt */
+    int ambient;   /* ka * the scene's ambient light > 0 */
+    int emits;     /* emission > 0 */
+    int glossy;    /* gloss > 0 with kr or kt */
+} RfExMat;
+
+RfExMat rf__ex_classify(const RfScene *s, const RfMaterial *m);
+
+/* Appends to the current file (a failed allocation sets ex->failed). */
+void rf__ex_printf(RfExCtx *c, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* Starts another file; path is copied. The current file becomes it. */
+RfExportFile *rf__ex_file(RfExCtx *c, const char *path);
+/* A note "source:line:col: fmt" (the line and column left out when loc has none); problem = 1:
+ * something the target cannot represent. */
+void rf__ex_note(RfExCtx *c, RfSrcLoc loc, int problem, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
+/* The shortest of %.15g, %.16g, %.17g that reads back as x (a slot of the context's ring: valid
+ * for the next RF_EX_RING - 1 calls). */
+const char *rf__ex_num(RfExCtx *c, double x);
+/* Three numbers joined by sep ("x, y, z" with ", "). */
+const char *rf__ex_vec(RfExCtx *c, RfVec3 v, const char *sep);
+const char *rf__ex_rgb(RfExCtx *c, RfRgb v, const char *sep);
+
+/* The header comment's lines that every target shares (the source, the conventions of refray
+ * it is read with), each line prefixed with lead ("# ", "// "). */
+void rf__ex_common_header(RfExCtx *c, const char *lead);
+/* The notes every target shares: ambient light, emission, glossy rays, area lights where the
+ * target has none (area_ok 0), a thin lens where it has none (lens_ok 0). */
+void rf__ex_common_checks(RfExCtx *c, int area_ok, int lens_ok);
+
+/* A note when the camera's near plane (hither) may cut the scene: POV-Ray and pbrt have none. */
+void rf__ex_check_hither(RfExCtx *c);
+
+/* A unit vector perpendicular to n (unit). */
+RfVec3 rf__ex_perpendicular(RfVec3 n);
+
+/* The writers: each writes c->ex->files[0] (and the files beside it). */
+void rf__export_mitsuba(RfExCtx *c);
+void rf__export_pbrt(RfExCtx *c);
+void rf__export_pov(RfExCtx *c);
+
+#endif
