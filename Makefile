@@ -109,12 +109,12 @@ $(TEST): $(call obj,$(TEST_SRC)) $(call obj,$(RASTER_LIB_SRC)) $(BUILD)/obj/src/
 	@$(if $(Q),echo "  LINK    $@")
 	$(Q)$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL) $(OSMESA_LIBS)
 
-$(RASTER): $(call obj,$(RASTER_SRC)) $(BUILD)/obj/src/cli/args.o $(LIB)
+$(RASTER): $(call obj,$(RASTER_SRC)) $(BUILD)/obj/src/cli/args.o $(BUILD)/obj/src/cli/opt.o $(LIB)
 	@$(if $(Q),echo "  LINK    $@")
 	$(Q)$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL) $(OSMESA_LIBS)
 
 # refray-view: the GLFW viewer (compare/view_main.c), with the rasterizer for its GL views
-$(VIEW): $(call obj,compare/view_main.c $(RASTER_LIB_SRC)) $(BUILD)/obj/src/cli/args.o $(LIB)
+$(VIEW): $(call obj,compare/view_main.c $(RASTER_LIB_SRC)) $(BUILD)/obj/src/cli/args.o $(BUILD)/obj/src/cli/opt.o $(LIB)
 	@$(if $(Q),echo "  LINK    $@")
 	$(Q)$(CC) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL) $(OSMESA_LIBS) $(GLFW_LIBS)
 
@@ -136,7 +136,7 @@ $(BUILD)/obj/compare/%.o: compare/%.cpp
 	@$(if $(Q),echo "  CXX     $<")
 	$(Q)$(CXX) $(CXXFLAGS_ALL) -MMD -MP -c $< -o $@
 
-$(VERIFY): $(call cxxobj,$(VERIFY_SRC)) $(LIB)
+$(VERIFY): $(call cxxobj,$(VERIFY_SRC)) $(BUILD)/obj/src/cli/opt.o $(LIB)
 	@$(if $(Q),echo "  LINK    $@")
 	$(Q)$(CXX) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL) -lgmp -lmpfr
 

@@ -5,29 +5,42 @@
 #include <string.h>
 
 #include "../src/cli/args.h"
+#include "../src/cli/exit_codes.h"
 #include "gl_context.h"
 #include "raster.h"
 #include "refray/scene_io.h"
 #include "refray/version.h"
 
-static void usage(FILE *out)
-{
-    fprintf(out,
-            "usage: refray-raster SCENE -o OUT.exr [--depth-out DEPTH.exr] [--png OUT.png]\n"
-            "                     [--mode phong|gouraud|flat] [--width W] [--height H]\n"
-            "                     [--gamma G | --srgb] [--nff-fov centres|edges] [--gl auto|osmesa|egl]\n"
-            "  OpenGL 4.5 core (offscreen) rasterization of the scene with the tracer's --local\n"
-            "  shading: the image `refray render --local` must reproduce (docs/compare.md).\n"
-            "  -o           linear RGB OpenEXR (32-bit float)\n"
-            "  --depth-out  linear eye-space depth (distance along the view axis), +inf = background\n"
-            "  --mode       phong (per pixel, default); gouraud and flat shade polygons per vertex /\n"
-            "               per face (teaching); spheres, cones and planes are always per pixel\n"
-            "  --gl         the headless GL: osmesa (Mesa's off-screen library), egl (Mesa's\n"
-            "               surfaceless EGL, OSMesa's successor) or auto (default: osmesa, else egl);\n"
-            "               both give the same image\n"
-            "exit: 0 ok, 1 error, 2 usage\n");
-}
+enum { OPT_DEPTH_OUT = RF_OPT_ID, OPT_PNG, OPT_MODE, OPT_WIDTH, OPT_HEIGHT, OPT_GL };
 
+static const RfOpt raster_opts[] = {
+    {"output", 'o', "FILE", "the image: .exr linear RGB (32-bit float) or .png (display-encoded)", NULL},
+    {"depth-out", OPT_DEPTH_OUT, "DEPTH.exr", "linear eye-space depth (distance along the view axis), +inf = background",
+     NULL},
+    {"png", OPT_PNG, "OUT.png", "a display PNG besides", NULL},
+    {"mode", OPT_MODE, "phong|gouraud|flat", "shading: phong per pixel (default); gouraud, flat per vertex / face",
+     "phong, gouraud or flat"},
+    {"width", OPT_WIDTH, "W", "image width (default: the scene's)", "an integer in [1, 65536]"},
+    {"height", OPT_HEIGHT, "H", "image height (default: the scene's)", "an integer in [1, 65536]"},
+    {"gl", OPT_GL, "auto|osmesa|egl", "the headless GL (default auto: osmesa, else egl); the same image",
+     "auto, osmesa or egl"},
+    RF_OPT_TABLE_END,
+};
+
+static const RfOpt *const raster_tables[] = {raster_opts, rf_opts_png, rf_opts_load, NULL};
+
+static const RfCommand raster_cmd = {
+    "refray-raster",
+    "refray-raster [options] SCENE -o OUT.exr [--depth-out DEPTH.exr] [--png OUT.png]\n",
+    "OpenGL 4.5 core (offscreen) rasterization of the scene with the tracer's --local\n"
+    "shading: the image `refray render --local` must reproduce (docs/compare.md).\n",
+    raster_tables,
+    "--mode gouraud and flat shade polygons per vertex / per face (teaching); spheres, cones\n"
+    "and planes are always per pixel. --gl osmesa is Mesa's off-screen library, egl Mesa's\n"
+    "surfaceless EGL (OSMesa's successor).\n"
+    "exit: 0 ok, 2 no GL context or the rasterization failed, 4 a file cannot be read or\n"
+    "written, 5 usage (README: Exit codes)\n",
+};
 
 int main(int argc, char **argv)
 {
@@ -36,69 +49,59 @@ int main(int argc, char **argv)
     RfLoadOptions lopt = rf_load_options_default();
     RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
     int gl = RF_GL_AUTO;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int ok = 1, shared, used;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "-o") == 0 && v) {
-            exr = v, i++;
-        } else if (strcmp(a, "--depth-out") == 0 && v) {
-            depth_out = v, i++;
-        } else if (strcmp(a, "--png") == 0 && v) {
-            png = v, i++;
-        } else if (strcmp(a, "--width") == 0 && v) {
-            ok = rf_arg_int(v, 1, 65536, &opt.width), i++;
-        } else if (strcmp(a, "--height") == 0 && v) {
-            ok = rf_arg_int(v, 1, 65536, &opt.height), i++;
-        } else if (strcmp(a, "--mode") == 0 && v) {
-            i++;
-            if (strcmp(v, "phong") == 0)
-                opt.mode = RF_SHADE_PHONG;
-            else if (strcmp(v, "gouraud") == 0)
-                opt.mode = RF_SHADE_GOURAUD;
-            else if (strcmp(v, "flat") == 0)
-                opt.mode = RF_SHADE_FLAT;
-            else
-                ok = 0;
-        } else if (strcmp(a, "--gl") == 0 && v) {
-            ok = (gl = rf_gl_backend_parse(v)) >= 0, i++;
-        } else if ((shared = rf_arg_shared(a, v, &lopt, &popt, &used)) != 0) {
-            ok = shared > 0, i += used - 1;
-        } else if (a[0] != '-' && !scene_path) {
-            scene_path = a;
-        } else {
-            fprintf(stderr, "refray-raster: unknown or incomplete option '%s' (see: refray-raster --help)\n", a);
-            return 2;
+    RfOptParser p;
+    int key;
+    rf_opt_init(&p, &raster_cmd, argc, argv);
+    while ((key = rf_opt_next(&p)) != RF_OPT_DONE) {
+        const char *v = p.value;
+        int ok = 1;
+        switch (key) {
+        case RF_OPT_EXIT: return p.exit_code;
+        case 'o': exr = v; break;
+        case OPT_DEPTH_OUT: depth_out = v; break;
+        case OPT_PNG: png = v; break;
+        case OPT_WIDTH: ok = rf_arg_int(v, 1, 65536, &opt.width); break;
+        case OPT_HEIGHT: ok = rf_arg_int(v, 1, 65536, &opt.height); break;
+        case OPT_MODE:
+            ok = strcmp(v, "phong") == 0 || strcmp(v, "gouraud") == 0 || strcmp(v, "flat") == 0;
+            opt.mode = v[0] == 'g' ? RF_SHADE_GOURAUD : v[0] == 'f' ? RF_SHADE_FLAT : RF_SHADE_PHONG;
+            break;
+        case OPT_GL: ok = (gl = rf_gl_backend_parse(v)) >= 0; break;
+        default: ok = rf_arg_shared(key, v, &lopt, &popt) > 0;
         }
-        if (!ok) {
-            fprintf(stderr, "refray-raster: bad value for %s\n", a);
-            return 2;
-        }
+        if (!ok)
+            return rf_opt_bad_value(&p);
     }
-    if (!scene_path || (!exr && !png && !depth_out)) {
-        usage(stderr);
-        return 2;
-    }
+    char **ops;
+    int n = rf_opt_operands(&p, &ops);
+    if (n == 0)
+        return rf_opt_usage_error(&raster_cmd, "missing the scene file");
+    if (n > 1)
+        return rf_opt_usage_error(&raster_cmd, "one scene only, '%s' is a second", ops[1]);
+    scene_path = ops[0];
+    if (!exr && !png && !depth_out)
+        return rf_opt_usage_error(&raster_cmd, "missing the output: -o OUT.exr, -o OUT.png, --png or --depth-out");
+    if ((exr && !rf_arg_image_format("refray-raster", "-o", exr, RF_IMAGE_EXR | RF_IMAGE_PNG)) ||
+        (png && !rf_arg_image_format("refray-raster", "--png", png, RF_IMAGE_PNG)) ||
+        (depth_out && !rf_arg_image_format("refray-raster", "--depth-out", depth_out, RF_IMAGE_EXR)))
+        return RF_EXIT_USAGE;
     char err[1024];
     RfScene scene;
     const char *outs[3] = {exr, png, depth_out}, *ins[1] = {scene_path};
-    if (rf_outputs_check(outs, 3, ins, 1, err, sizeof err) != RF_OK) { /* before any work */
-        fprintf(stderr, "refray-raster: %s\n", err);
-        return 2;
-    }
+    int bad = rf_arg_outputs_check("refray-raster", outs, 3, ins, 1); /* before any work */
+    if (bad)
+        return bad;
     rf_scene_init(&scene);
     if (rf_scene_load(scene_path, &lopt, &scene, err, sizeof err) != RF_OK) {
-        fprintf(stderr, "%s\n", err);
-        return 1;
+        rf_arg_report("refray-raster", err);
+        return RF_EXIT_FILE;
     }
     RfGlContext *ctx = NULL;
     RfImage img, depth;
     if (rf_gl_context_create((RfGlBackend)gl, &ctx, err, sizeof err) != RF_OK) {
         fprintf(stderr, "refray-raster: %s\n", err);
         rf_scene_free(&scene);
-        return 1;
+        return RF_EXIT_FAIL;
     }
     RfStatus st = rf_raster_render(&scene, &opt, rf_gl_context_proc, ctx, &img, depth_out ? &depth : NULL,
                                    err, sizeof err);
@@ -107,7 +110,7 @@ int main(int argc, char **argv)
     rf_scene_free(&scene);
     if (st != RF_OK) {
         fprintf(stderr, "refray-raster: %s: %s\n", scene_path, err);
-        return 1;
+        return RF_EXIT_FAIL;
     }
     static const char *modes[] = {"phong", "gouraud", "flat"};
     char settings[128];
@@ -121,18 +124,18 @@ int main(int argc, char **argv)
     popt.batch = batch;
     if (!batch) {
         snprintf(err, sizeof err, "out of memory");
-        rc = 1;
+        rc = RF_EXIT_FAIL;
     }
-    if (!rc && exr && rf_exr_write_opts(exr, &img, attrs, 4, eopt, err, sizeof err) != RF_OK)
-        rc = 1;
+    if (!rc && exr && rf_arg_write_image(exr, &img, attrs, 4, eopt, popt, err, sizeof err) != RF_OK)
+        rc = RF_EXIT_FILE;
     if (!rc && png && rf_png_write(png, &img, popt, err, sizeof err) != RF_OK)
-        rc = 1;
+        rc = RF_EXIT_FILE;
     if (!rc && depth_out && rf_exr_write_opts(depth_out, &depth, attrs, 4, eopt, err, sizeof err) != RF_OK)
-        rc = 1;
+        rc = RF_EXIT_FILE;
     if (rc)
         rf_write_batch_abort(batch);
     else if (rf_write_batch_commit(batch, err, sizeof err) != RF_OK)
-        rc = 1;
+        rc = RF_EXIT_FILE;
     if (rc)
         fprintf(stderr, "refray-raster: %s\n", err);
     rf_image_free(&img);

@@ -8,7 +8,7 @@
 set -u
 bin=$1 raster=$2 out=$3 size=${4%%x*}
 notes=compare/report-notes.txt
-case $size in '' | *[!0-9]*) echo "report.sh: SIZE must be a number of pixels" >&2; exit 2 ;; esac
+case $size in '' | *[!0-9]*) echo "report.sh: SIZE must be a number of pixels" >&2; exit 5 ;; esac  # usage (README: Exit codes)
 mkdir -p "$out/img" "$out/exr" || exit 1
 tmp=$(mktemp -d) || exit 1
 trap 'rm -rf "$tmp"' EXIT

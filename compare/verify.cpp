@@ -27,6 +27,8 @@
 #include <utility>
 #include <vector>
 
+#include "../src/cli/exit_codes.h"
+#include "../src/cli/opt.h"
 #include "refray/numeric.h"
 #include "refray/optics.h"
 #include "refray/scene_io.h"
@@ -1767,15 +1769,21 @@ const char *const kFileClasses[] = {"uniform", "edges", "grazing", "parallel", "
 // message (file:line:col), or the verifier's refusal of a scene outside its range with the
 // primitive's position (RfPrimitive.loc: its statement in the scene or in the mesh file it
 // includes).
-bool load_world(const char *path, World &w, std::string *err)
+// *code (may be null): RF_EXIT_FILE when the scene cannot be read, RF_EXIT_FAIL when the oracle
+// cannot take it
+bool load_world(const char *path, World &w, std::string *err, int *code = nullptr)
 {
     char msg[1024];
     rf_scene_free(&w.sc);
     rf_scene_init(&w.sc);
+    if (code)
+        *code = RF_EXIT_FILE;
     if (rf_scene_load(path, nullptr, &w.sc, msg, sizeof msg) != RF_OK) {
         *err = msg;
         return false;
     }
+    if (code)
+        *code = RF_EXIT_FAIL;
     // the exact oracle expands every placement: a graph with more paths than it can hold (a DAG
     // of groups placing their child twice has 2^levels) is refused before the expansion
     RfTriangleCount tc = rf_scene_triangle_count(&w.sc);
@@ -1957,27 +1965,43 @@ std::vector<Stats> run_all(const std::vector<std::string> &classes, const Opts &
     return rows;
 }
 
-void usage(FILE *f)
-{
-    fprintf(f,
-            "usage: refray-verify [SCENE...] [--rays N] [--class CLASS] [--seed S] [--jobs J] [--stress]\n"
-            "                     [--scene-rays N] [--triangle watertight|moller|script]\n"
-            "                     [--sphere stable|script] [--fixed-offset EPS] [--cone-bound kernel|geometric]\n"
-            "  SCENE           an .nff/.rf/.obj scene: rays of the classes uniform, edges, grazing, parallel,\n"
-            "                  surface over its primitives, a row per class (default: every class on\n"
-            "                  scenes built in code); several scenes or --stress: one row per scene with\n"
-            "                  --scene-rays rays per class (default rays/50)\n"
-            "  --class         one of uniform edges grazing parallel far radii surface acne leak optics\n"
-            "                  invalid cones polygons instances star-prisms (repeatable; default: all)\n"
-            "  --rays N        rays per class (default 100000)\n"
-            "  --stress        every class, the table of make stress\n"
-            "  --triangle, --sphere   test the §3.5 kernels with these methods instead of the tracer\n"
-            "  --fixed-offset  replace the self-intersection policy by a fixed absolute offset\n"
-            "  --cone-bound    cones judged by the cone kernel's own error bound (default) or by the\n"
-            "                  spheres' geometric one, which the unstabilised kernel does not meet\n"
-            "Exit status: 0 when no real disagreement, 1 otherwise, 2 on bad usage or when a scene\n"
-            "cannot be loaded or is outside the verifier's range. docs/verify.md\n");
-}
+enum { OPT_RAYS = RF_OPT_ID, OPT_SEED, OPT_JOBS, OPT_CLASS, OPT_STRESS, OPT_SCENE_RAYS, OPT_TRIANGLE, OPT_SPHERE,
+       OPT_CONE_BOUND, OPT_FIXED_OFFSET };
+
+const RfOpt verify_opts[] = {
+    {"rays", OPT_RAYS, "N", "rays per class (default 100000)", "an integer >= 0"},
+    {"class", OPT_CLASS, "CLASS", "one class of rays (repeatable; default: all); see below", nullptr},
+    {"seed", OPT_SEED, "S", "the rays' random seed (default 1)", "an integer >= 0"},
+    {"jobs", OPT_JOBS, "J", "classes run in J processes at once (default 1)", "an integer >= 1"},
+    {"stress", OPT_STRESS, nullptr, "every class, the table of make stress", nullptr},
+    {"scene-rays", OPT_SCENE_RAYS, "N", "rays per class in a scene's row (default rays/50)", "an integer >= 1"},
+    {"triangle", OPT_TRIANGLE, "watertight|moller|script", "test the §3.5 triangle kernel with this method",
+     "watertight, moller or script"},
+    {"sphere", OPT_SPHERE, "stable|script", "test the §3.5 sphere kernel with this method", "stable or script"},
+    {"fixed-offset", OPT_FIXED_OFFSET, "EPS", "replace the self-intersection policy by a fixed absolute offset",
+     "a number >= 0"},
+    {"cone-bound", OPT_CONE_BOUND, "kernel|geometric", "cones judged by the cone kernel's bound (default) or the geometric one",
+     "kernel or geometric"},
+    {nullptr, 0, nullptr, nullptr, nullptr},
+};
+
+const RfOpt *const verify_tables[] = {verify_opts, nullptr};
+
+const RfCommand verify_cmd = {
+    "refray-verify",
+    "refray-verify [options] [SCENE...]\n",
+    "The tracer's intersection decisions against CGAL's exact arithmetic. SCENE: an .nff/.rf/.obj\n"
+    "scene: rays of the classes uniform, edges, grazing, parallel, surface over its primitives, a\n"
+    "row per class (default: every class on scenes built in code); several scenes or --stress:\n"
+    "one row per scene with --scene-rays rays per class.\n",
+    verify_tables,
+    "classes: uniform edges grazing parallel far radii surface acne leak optics invalid cones\n"
+    "polygons instances star-prisms. The spheres' geometric cone bound is one the unstabilised\n"
+    "cone kernel does not meet.\n"
+    "exit: 0 no real disagreement, 2 a real disagreement (a planted bug found) or a row that could\n"
+    "not run (a scene outside the verifier's range), 4 a scene cannot be read, 5 usage\n"
+    "(README: Exit codes). docs/verify.md\n",
+};
 
 int verify_main(int argc, char **argv)
 {
@@ -1988,59 +2012,50 @@ int verify_main(int argc, char **argv)
     std::vector<const char *> scenes;
     bool stress = false;
     int jobs = 1;
-    for (int i = 1; i < argc; i++) {
-        std::string a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : nullptr;
-        if (a == "--help" || a == "-h") {
-            usage(stdout);
-            return 0;
-        } else if (a == "--rays" && v) {
-            o.rays = std::atol(v), i++;
-        } else if (a == "--seed" && v) {
-            o.seed = std::strtoull(v, nullptr, 10), i++;
-        } else if (a == "--jobs" && v) {
-            jobs = std::atoi(v), i++;
-        } else if (a == "--class" && v) {
-            classes.push_back(v), i++;
-        } else if (a == "--stress") {
-            stress = true;
-        } else if (a == "--scene-rays" && v) {
-            o.scene_rays = std::atol(v), i++;
-        } else if (a == "--triangle" && v) {
+    RfOptParser p;
+    int key;
+    rf_opt_init(&p, &verify_cmd, argc, argv);
+    while ((key = rf_opt_next(&p)) != RF_OPT_DONE) {
+        const char *v = p.value;
+        char *end = nullptr;
+        bool ok = true;
+        switch (key) {
+        case RF_OPT_EXIT: return p.exit_code;
+        case OPT_RAYS: o.rays = std::strtol(v, &end, 10), ok = *end == 0 && *v && o.rays >= 0; break;
+        case OPT_SEED: o.seed = std::strtoull(v, &end, 10), ok = *end == 0 && *v && *v != '-'; break;
+        case OPT_JOBS: jobs = (int)std::strtol(v, &end, 10), ok = *end == 0 && *v && jobs >= 1; break;
+        case OPT_CLASS: classes.push_back(v); break;
+        case OPT_STRESS: stress = true; break;
+        case OPT_SCENE_RAYS: o.scene_rays = std::strtol(v, &end, 10), ok = *end == 0 && *v && o.scene_rays >= 1; break;
+        case OPT_TRIANGLE: {
             std::string m = v;
-            i++;
             o.kernel = true;
             o.tri = m == "moller" ? RF_TRIANGLE_MOLLER : m == "script" ? RF_TRIANGLE_SCRIPT : RF_TRIANGLE_WATERTIGHT;
-        } else if (a == "--sphere" && v) {
+            ok = m == "moller" || m == "script" || m == "watertight";
+            break;
+        }
+        case OPT_SPHERE:
             o.kernel = true;
             o.sph = std::string(v) == "script" ? RF_SPHERE_SCRIPT : RF_SPHERE_STABLE;
-            i++;
-        } else if (a == "--cone-bound" && v) {
+            ok = std::string(v) == "script" || std::string(v) == "stable";
+            break;
+        case OPT_CONE_BOUND:
             g_cone_geometric = std::string(v) == "geometric";
-            if (!g_cone_geometric && std::string(v) != "kernel") {
-                fprintf(stderr, "refray-verify: --cone-bound kernel|geometric\n");
-                return 2;
-            }
-            i++;
-        } else if (a == "--fixed-offset" && v) {
-            o.fixed_offset = std::atof(v), i++;
-        } else if (a[0] != '-') {
-            scenes.push_back(argv[i]);
-        } else {
-            fprintf(stderr, "refray-verify: unknown or incomplete option '%s'\n", a.c_str());
-            usage(stderr);
-            return 2;
+            ok = g_cone_geometric || std::string(v) == "kernel";
+            break;
+        case OPT_FIXED_OFFSET: o.fixed_offset = std::strtod(v, &end), ok = *end == 0 && *v && o.fixed_offset >= 0; break;
         }
+        if (!ok)
+            return rf_opt_bad_value(&p);
     }
-    if (o.rays < 0 || jobs < 1) {
-        usage(stderr);
-        return 2;
-    }
+    char **ops;
+    int nops = rf_opt_operands(&p, &ops);
+    for (int i = 0; i < nops; i++)
+        scenes.push_back(ops[i]);
     for (const std::string &c : classes)
         if (std::find(std::begin(kAllClasses), std::end(kAllClasses), c) == std::end(kAllClasses) &&
             c.compare(0, 6, "scene:") != 0) {
-            fprintf(stderr, "refray-verify: unknown class '%s'\n", c.c_str());
-            return 2;
+            return rf_opt_usage_error(&verify_cmd, "unknown class '%s'", c.c_str());
         }
     if (o.scene_rays <= 0)
         o.scene_rays = std::max(1L, o.rays / 50);
@@ -2049,16 +2064,16 @@ int verify_main(int argc, char **argv)
         o.scene = scenes[0];
         fw.reset(new World);
         std::string err;
-        if (!load_world(o.scene, *fw, &err)) {
+        int code = RF_EXIT_FILE;
+        if (!load_world(o.scene, *fw, &err, &code)) {
             fprintf(stderr, "refray-verify: %s\n", err.c_str());
-            return 2;
+            return code;
         }
         if (classes.empty())
             classes.assign(std::begin(kFileClasses), std::end(kFileClasses));
         for (const std::string &c : classes)
             if (std::find(std::begin(kFileClasses), std::end(kFileClasses), c) == std::end(kFileClasses)) {
-                fprintf(stderr, "refray-verify: class '%s' runs on built-in scenes only\n", c.c_str());
-                return 2;
+                return rf_opt_usage_error(&verify_cmd, "class '%s' runs on built-in scenes only", c.c_str());
             }
     } else {
         if (stress || (classes.empty() && scenes.empty()))
@@ -2090,7 +2105,7 @@ int verify_main(int argc, char **argv)
         printf("ERROR: %d row%s could not run (see above)\n", errors, errors > 1 ? "s" : "");
     else
         printf("OK: no real disagreement\n");
-    return real ? 1 : errors ? 2 : 0;
+    return real || errors ? RF_EXIT_FAIL : RF_EXIT_OK;
 }
 
 } // namespace

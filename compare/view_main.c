@@ -19,6 +19,7 @@
 #include <time.h>
 
 #include "../src/cli/args.h"
+#include "../src/cli/exit_codes.h"
 #include "raster.h"
 #include "refray/camera.h"
 #include "refray/render.h"
@@ -42,18 +43,36 @@ static const char *const keys_help =
     "file is reloaded when it changes on disk; a broken edit shows its file:line:col error there\n"
     "(and on stderr) and the last good scene stays.\n";
 
-static void usage(FILE *out)
-{
-    fprintf(out,
-            "usage: refray-view SCENE [--width W] [--height H] [--samples N] [--depth D] [--threads N]\n"
-            "                   [--local] [--nff-fov centres|edges] [--show tracer|raster|diff]\n"
-            "                   [--screenshot OUT.png [--save OUT.exr] [--timeout S]]\n"
-            "  --show        the view to start with (keys T, G, D)\n"
-            "  --screenshot  once the render has converged, save the window's pixels (8-bit, the\n"
-            "                display's gamma 2.2) and exit: 0, or 1 after --timeout seconds (60);\n"
-            "                --save also writes the linear image shown (refray render's, bit for bit)\n%s",
-            keys_help);
-}
+enum {
+    OPT_WIDTH = RF_OPT_ID, OPT_HEIGHT, OPT_SAMPLES, OPT_DEPTH, OPT_THREADS, OPT_LOCAL, OPT_SHOW, OPT_SCREENSHOT,
+    OPT_SAVE, OPT_TIMEOUT
+};
+
+static const RfOpt view_opts[] = {
+    {"width", OPT_WIDTH, "W", "window and image width (default: the scene's)", "an integer in [1, 16384]"},
+    {"height", OPT_HEIGHT, "H", "window and image height (default: the scene's)", "an integer in [1, 16384]"},
+    {"samples", OPT_SAMPLES, "N", "samples per pixel of the full pass (default: the scene's)",
+     "an integer in [1, 4096]"},
+    {"depth", OPT_DEPTH, "D", "the deepest ray tree (default: the scene's)", "an integer in [1, 64]"},
+    {"threads", OPT_THREADS, "N", "worker threads (default: one per processor)", "an integer in [1, 1024]"},
+    {"local", OPT_LOCAL, NULL, "primary rays and local Phong only, as refray render --local", NULL},
+    {"show", OPT_SHOW, "tracer|raster|diff", "the view to start with (keys T, G, D)", "tracer, raster or diff"},
+    {"screenshot", OPT_SCREENSHOT, "OUT.png", "once converged, save the window's pixels (8-bit) and exit", NULL},
+    {"save", OPT_SAVE, "OUT.exr", "with --screenshot: the linear image shown too (.exr, or .png encoded)", NULL},
+    {"timeout", OPT_TIMEOUT, "S", "with --screenshot: give up after S seconds (default 60)", "a number >= 0"},
+    RF_OPT_TABLE_END,
+};
+
+static const RfOpt *const view_tables[] = {view_opts, rf_opts_png, rf_opts_load, NULL};
+
+static const RfCommand view_cmd = {
+    "refray-view",
+    "refray-view [options] SCENE\n",
+    "A window on SCENE: the tracer's image refining (refray render's, bit for bit once\n"
+    "converged), the comparator's OpenGL rasterization and their difference.\n",
+    view_tables,
+    NULL, /* the keys: set at run time (keys_help) */
+};
 
 /* ---- GL entry points the window's own drawing needs ---- */
 #define VIEW_GL(X)                                                                                  \
@@ -485,61 +504,56 @@ int main(int argc, char **argv)
     double timeout = 60.0;
     RfLoadOptions lopt = rf_load_options_default();
     RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
-        int ok = 1, shared, used;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "--width") == 0 && val) {
-            ok = rf_arg_int(val, 1, 16384, &width), i++;
-        } else if (strcmp(a, "--height") == 0 && val) {
-            ok = rf_arg_int(val, 1, 16384, &height), i++;
-        } else if (strcmp(a, "--samples") == 0 && val) {
-            ok = rf_arg_int(val, 1, 4096, &samples), i++;
-        } else if (strcmp(a, "--depth") == 0 && val) {
-            ok = rf_arg_int(val, 1, 64, &depth), i++;
-        } else if (strcmp(a, "--threads") == 0 && val) {
-            ok = rf_arg_int(val, 1, 1024, &threads), i++;
-        } else if (strcmp(a, "--local") == 0) {
-            local = 1;
-        } else if (strcmp(a, "--show") == 0 && val) {
+    RfCommand cmd = view_cmd;
+    char notes[4096];
+    snprintf(notes, sizeof notes, "--screenshot exits 0, or 2 after --timeout seconds; the PNG has the display's gamma 2.2.\n"
+                                  "%sexit: 0 ok, 2 no converged image or no window, 4 a file cannot be read or written,\n"
+                                  "5 usage (README: Exit codes)\n", keys_help);
+    cmd.notes = notes;
+    RfOptParser p;
+    int key;
+    rf_opt_init(&p, &cmd, argc, argv);
+    while ((key = rf_opt_next(&p)) != RF_OPT_DONE) {
+        const char *val = p.value;
+        int ok = 1;
+        switch (key) {
+        case RF_OPT_EXIT: return p.exit_code;
+        case OPT_WIDTH: ok = rf_arg_int(val, 1, 16384, &width); break;
+        case OPT_HEIGHT: ok = rf_arg_int(val, 1, 16384, &height); break;
+        case OPT_SAMPLES: ok = rf_arg_int(val, 1, 4096, &samples); break;
+        case OPT_DEPTH: ok = rf_arg_int(val, 1, 64, &depth); break;
+        case OPT_THREADS: ok = rf_arg_int(val, 1, 1024, &threads); break;
+        case OPT_LOCAL: local = 1; break;
+        case OPT_SHOW:
             show = strcmp(val, "tracer") == 0 ? 0 : strcmp(val, "raster") == 0 ? 1 : strcmp(val, "diff") == 0 ? 2 : -1;
-            ok = show >= 0, i++;
-        } else if (strcmp(a, "--screenshot") == 0 && val) {
-            screenshot = val, i++;
-        } else if (strcmp(a, "--save") == 0 && val) {
-            save = val, i++;
-        } else if (strcmp(a, "--timeout") == 0 && val) {
-            ok = rf_arg_nonneg(val, &timeout), i++;
-        } else if ((shared = rf_arg_shared(a, val, &lopt, &popt, &used)) != 0) {
-            ok = shared > 0, i += used - 1;
-        } else if (a[0] != '-' && !scene_path) {
-            scene_path = a;
-        } else {
-            fprintf(stderr, "refray-view: unknown or incomplete option '%s' (see: refray-view --help)\n", a);
-            return 2;
+            ok = show >= 0;
+            break;
+        case OPT_SCREENSHOT: screenshot = val; break;
+        case OPT_SAVE: save = val; break;
+        case OPT_TIMEOUT: ok = rf_arg_nonneg(val, &timeout); break;
+        default: ok = rf_arg_shared(key, val, &lopt, &popt) > 0;
         }
-        if (!ok) {
-            fprintf(stderr, "refray-view: bad value for %s\n", a);
-            return 2;
-        }
+        if (!ok)
+            return rf_opt_bad_value(&p);
     }
-    if (!scene_path) {
-        usage(stderr);
-        return 2;
-    }
+    char **ops;
+    int n = rf_opt_operands(&p, &ops);
+    if (n == 0)
+        return rf_opt_usage_error(&cmd, "missing the scene file");
+    if (n > 1)
+        return rf_opt_usage_error(&cmd, "one scene only, '%s' is a second", ops[1]);
+    scene_path = ops[0];
     char err[1024];
-    if (save && !screenshot) {
-        fprintf(stderr, "refray-view: --save comes with --screenshot\n");
-        return 2;
-    }
+    if (save && !screenshot)
+        return rf_opt_usage_error(&cmd, "--save comes with --screenshot");
     if (screenshot) {
         const char *outs[2] = {screenshot, save}, *ins[1] = {scene_path};
-        if (rf_outputs_check(outs, 2, ins, 1, err, sizeof err) != RF_OK) {
-            fprintf(stderr, "refray-view: %s\n", err);
-            return 2;
-        }
+        if (!rf_arg_image_format("refray-view", "--screenshot", screenshot, RF_IMAGE_PNG) ||
+            (save && !rf_arg_image_format("refray-view", "--save", save, RF_IMAGE_EXR | RF_IMAGE_PNG)))
+            return RF_EXIT_USAGE;
+        int bad = rf_arg_outputs_check("refray-view", outs, 2, ins, 1);
+        if (bad)
+            return bad;
     }
     View v;
     memset(&v, 0, sizeof v);
@@ -547,8 +561,8 @@ int main(int argc, char **argv)
     v.lopt = lopt;
     v.mode = show;
     if (rf_scene_load(scene_path, &lopt, &v.scene, err, sizeof err) != RF_OK) {
-        fprintf(stderr, "%s\n", err);
-        return 1;
+        rf_arg_report("refray-view", err);
+        return RF_EXIT_FILE;
     }
     struct stat sb;
     if (stat(scene_path, &sb) == 0)
@@ -571,11 +585,11 @@ int main(int argc, char **argv)
     if (!sh.next_scene || rf_image_alloc(&sh.shown, sh.width, sh.height, 3) != RF_OK ||
         rf_image_alloc(&v.diff, sh.width, sh.height, 3) != RF_OK) {
         fprintf(stderr, "refray-view: %s\n", sh.next_scene ? "out of memory" : err);
-        return 1;
+        return RF_EXIT_FAIL;
     }
     if (!glfwInit()) {
         fprintf(stderr, "refray-view: GLFW cannot start (no display? run it under xvfb-run)\n");
-        return 1;
+        return RF_EXIT_FAIL;
     }
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
@@ -586,7 +600,7 @@ int main(int argc, char **argv)
     if (!win) {
         fprintf(stderr, "refray-view: no OpenGL 4.5 core window\n");
         glfwTerminate();
-        return 1;
+        return RF_EXIT_FAIL;
     }
     glfwMakeContextCurrent(win);
     glfwSwapInterval(1);
@@ -594,7 +608,7 @@ int main(int argc, char **argv)
 #define X(type, name)                                                                               \
     if (!(gl.name = (type)glfwGetProcAddress("gl" #name))) {                                      \
         fprintf(stderr, "refray-view: GL function gl" #name " missing\n");                        \
-        return 1;                                                                                   \
+        return RF_EXIT_FAIL;                                                                                   \
     }
     VIEW_GL(X)
 #undef X
@@ -609,7 +623,7 @@ int main(int argc, char **argv)
         gl.GetShaderiv(s, GL_COMPILE_STATUS, &okc);
         if (!okc) {
             fprintf(stderr, "refray-view: display shader does not compile\n");
-            return 1;
+            return RF_EXIT_FAIL;
         }
         gl.AttachShader(prog, s);
     }
@@ -711,10 +725,11 @@ int main(int argc, char **argv)
                             shot.data[(size_t)y * (size_t)fw * 3 + (size_t)x] =
                                 rgb[(size_t)(fh - 1 - y) * (size_t)fw * 3 + (size_t)x] / 255.0f;
                     RfPngOptions asis = {RF_PNG_AS_IS, 1.0, 8, NULL};
-                    if ((save && rf_exr_write(save, img, NULL, 0, err, sizeof err) != RF_OK) ||
+                    RfExrOptions eopt = {RF_EXR_ZIP, 0, NULL, 0, 0, 0, 0};
+                    if ((save && rf_arg_write_image(save, img, NULL, 0, eopt, popt, err, sizeof err) != RF_OK) ||
                         rf_png_write(screenshot, &shot, asis, err, sizeof err) != RF_OK) {
                         fprintf(stderr, "refray-view: %s\n", err);
-                        rc = 1;
+                        rc = RF_EXIT_FILE;
                     } else {
                         fprintf(stderr, "refray-view: %s: the converged %d spp image, %dx%d\n", screenshot,
                                 sh.pass_samples, fw, fh);
@@ -725,7 +740,7 @@ int main(int argc, char **argv)
                 glfwSetWindowShouldClose(win, 1);
             } else if (now_s() - start > timeout) {
                 fprintf(stderr, "refray-view: the render did not converge within %g s; no screenshot\n", timeout);
-                rc = 1;
+                rc = RF_EXIT_FAIL;
                 glfwSetWindowShouldClose(win, 1);
             }
         }

@@ -111,10 +111,10 @@ static void t_interpolation(void)
     if (rf_test_failed_checks > before)
         fprintf(stderr, "refray bench output:\n%s", out);
 
-    /* a broken anchors file: its line, exit 1 */
+    /* a broken anchors file: its line, exit 4 (README: Exit codes) */
     write_text(csv, "renderer,strategy,spp,seconds,rmse,relmse\nhand,a,1,x,0.1,1e-2\n");
     out = bench(args, &rc);
-    RF_CHECK_EQ_INT(rc, 1);
+    RF_CHECK_EQ_INT(rc, 4);
     RF_CHECK(strstr(out, "anchors.csv:2:") != NULL);
     tmp_close(&t);
 }
@@ -228,7 +228,7 @@ static void t_errors(void)
         return;
     char args[512], ref[128], err[256];
     int rc;
-    /* a reference of the wrong size: exit 1, both sizes named, nothing rendered */
+    /* a reference of the wrong size: exit 3, both sizes named, nothing rendered */
     RfImage img;
     snprintf(ref, sizeof ref, "%s/small.exr", t.dir);
     RF_CHECK(rf_image_alloc(&img, 8, 6, 3) == RF_OK);
@@ -236,10 +236,10 @@ static void t_errors(void)
     rf_image_free(&img);
     snprintf(args, sizeof args, "scenes/whitted.rf --width 32 --height 24 --ref %s 2>&1", ref);
     const char *out = bench(args, &rc);
-    RF_CHECK_EQ_INT(rc, 1);
+    RF_CHECK_EQ_INT(rc, 3);
     RF_CHECK(strstr(out, "is 8x6") && strstr(out, "32x24"));
     out = bench("/nonexistent/scene.rf 2>&1", &rc); /* the loader's message */
-    RF_CHECK_EQ_INT(rc, 1);
+    RF_CHECK_EQ_INT(rc, 4);
     RF_CHECK(strstr(out, "/nonexistent/scene.rf") != NULL);
     const char *usage_errors[] = {"", "scenes/whitted.rf --spp 0", "scenes/whitted.rf --spp 1,,4",
                                   "scenes/whitted.rf --samplers random,bogus", "scenes/whitted.rf --runs 0",
@@ -248,9 +248,9 @@ static void t_errors(void)
     for (size_t i = 0; i < sizeof usage_errors / sizeof usage_errors[0]; i++) {
         snprintf(args, sizeof args, "%s 2>&1", usage_errors[i]);
         out = bench(args, &rc);
-        if (rc != 2)
-            fprintf(stderr, "refray bench %s: exit %d, expected 2\n%s", usage_errors[i], rc, out);
-        RF_CHECK_EQ_INT(rc, 2);
+        if (rc != 5)
+            fprintf(stderr, "refray bench %s: exit %d, expected 5\n%s", usage_errors[i], rc, out);
+        RF_CHECK_EQ_INT(rc, 5);
         RF_CHECK(strstr(out, "refray bench") != NULL);
     }
     tmp_close(&t);

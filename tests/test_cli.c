@@ -53,7 +53,7 @@ static void t_errors(void)
     RF_CHECK_EQ_INT(rc, 1);
     RF_CHECK(strstr(out, "missing input 'a'") != NULL);
     out = run("nonsense 2>&1", &rc);
-    RF_CHECK_EQ_INT(rc, 2);
+    RF_CHECK_EQ_INT(rc, 5); /* README: Exit codes */
     out = run("formula 2>&1", &rc);
     RF_CHECK_EQ_INT(rc, 2);
     RF_CHECK(strstr(out, "usage") != NULL);

@@ -980,9 +980,10 @@ static int count_lines(const char *s)
     return n;
 }
 
-/* Errors: a broken scene gives one line "file:line:col: message" and exit 1; a missing file
- * "file:1:1: cannot open..."; bad or unknown options and a missing output exit 2. In each case
- * nothing is written (the folder holds only the scene). */
+/* Errors (README: Exit codes): a broken scene gives one line "file:line:col: message" and exit 4;
+ * a missing file "refray render: cannot open file: ..." (no invented line and column), exit 4; bad
+ * or unknown options and a missing output exit 5 with a message naming what is wrong. In each
+ * case nothing is written (the folder holds only the scene). */
 static void t_cli_render_errors(void)
 {
     char dir[] = "/tmp/rf-render-XXXXXX", cmd[4096], path[256], prefix[512];
@@ -1001,7 +1002,7 @@ static void t_cli_render_errors(void)
     snprintf(cmd, sizeof cmd, "%s render %s -o %s/out.exr --png %s/out.png 2>&1", rf_test_bin(), path, dir, dir);
     const char *out = rf_test_run(cmd, &code);
     snprintf(prefix, sizeof prefix, "%s:3:", path);
-    RF_CHECK_EQ_INT(code, 1);
+    RF_CHECK_EQ_INT(code, 4);
     RF_CHECK(strncmp(out, prefix, strlen(prefix)) == 0);
     RF_CHECK_EQ_INT(count_lines(out), 1);
     if (strncmp(out, prefix, strlen(prefix)) != 0)
@@ -1010,8 +1011,8 @@ static void t_cli_render_errors(void)
 
     snprintf(cmd, sizeof cmd, "%s render %s/missing.rf -o %s/out.exr 2>&1", rf_test_bin(), dir, dir);
     out = rf_test_run(cmd, &code);
-    snprintf(prefix, sizeof prefix, "%s/missing.rf:1:1: cannot open", dir);
-    RF_CHECK_EQ_INT(code, 1);
+    snprintf(prefix, sizeof prefix, "refray render: cannot open %s/missing.rf: No such file or directory\n", dir);
+    RF_CHECK_EQ_INT(code, 4);
     RF_CHECK(strncmp(out, prefix, strlen(prefix)) == 0);
     RF_CHECK_EQ_INT(count_lines(out), 1);
     RF_CHECK_EQ_INT(count_entries(dir), 1);
@@ -1022,16 +1023,17 @@ static void t_cli_render_errors(void)
         snprintf(cmd, sizeof cmd, "%s render scenes/whitted.rf -o %s/out.exr %s 2>&1", rf_test_bin(), dir,
                  bad_opts[k]);
         out = rf_test_run(cmd, &code);
-        if (code != 2)
+        if (code != 5)
             fprintf(stderr, "  %s: exit %d: %s", bad_opts[k], code, out);
-        RF_CHECK_EQ_INT(code, 2);
+        RF_CHECK_EQ_INT(code, 5);
         RF_CHECK(strstr(out, "refray render:") != NULL);
     }
-    /* no output named at all: usage, exit 2 */
+    /* no output named at all: exit 5, saying so */
     snprintf(cmd, sizeof cmd, "%s render scenes/whitted.rf 2>&1", rf_test_bin());
     out = rf_test_run(cmd, &code);
-    RF_CHECK_EQ_INT(code, 2);
-    RF_CHECK(strstr(out, "usage:") != NULL);
+    RF_CHECK_EQ_INT(code, 5);
+    RF_CHECK_STR(out, "refray render: missing the output: -o OUT.exr, -o OUT.png or --png OUT.png "
+                      "(see: refray render --help)\n");
     RF_CHECK_EQ_INT(count_entries(dir), 1);
     RF_CHECK(!file_exists(path) == 0); /* the scene itself is still there */
     unlink(path);

@@ -116,48 +116,52 @@ static void t_bad_input_table(void)
     }
     static const Case cases[] = {
         /* crashes and hangs */
-        {"3000 nested instances (render)", "$R render chain.rf -o a.exr", 1, "nested deeper than 64 levels"},
-        {"3000 nested instances (info)", "$R info chain.rf", 1, "chain.rf:196:1: instances nested deeper"},
-        {"3000 nested instances (raster)", "$X chain.rf -o a.exr", 1, "nested deeper than 64 levels"},
+        {"3000 nested instances (render)", "$R render chain.rf -o a.exr", 4, "nested deeper than 64 levels"},
+        {"3000 nested instances (info)", "$R info chain.rf", 4, "chain.rf:196:1: instances nested deeper"},
+        {"3000 nested instances (raster)", "$X chain.rf -o a.exr", 4, "nested deeper than 64 levels"},
         {"a DAG of 30 doubling levels (info: once per object)", "$R info dag.rf", 0, "objects   31"},
-        {"a DAG of 30 doubling levels (raster refuses to expand it)", "$X dag.rf -o a.exr", 1,
+        {"a DAG of 30 doubling levels (raster refuses to expand it)", "$X dag.rf -o a.exr", 2,
          "expands to 0 triangles in 2147483647 placements"},
         {"a DAG of 30 doubling levels (the verifier refuses to expand it)", "$V dag.rf --rays 100", 2,
          "expands to 2147483647 placements"},
         {"3000 nested instances (verifier)", "$V chain.rf --rays 100", -1, "nested deeper than 64 levels"},
         {"a 4-vector for a 3-vector", "$R formula srgb-encode rgb=1,2,3,4", 1, "must be a vector of 3 finite numbers"},
-        {"mesh /dev/zero", "$R info zero.rf", 1, "zero.rf:3:6: mesh '/dev/zero': not a regular file"},
-        {"mtllib /dev/zero", "$R info zero.obj", 1, "material library '/dev/zero': not a regular file"},
-        {"a FIFO as the scene", "rm -f fifo.rf; mkfifo fifo.rf; $R info fifo.rf", 1, "fifo.rf:1:1: not a regular file"},
+        {"mesh /dev/zero", "$R info zero.rf", 4, "zero.rf:3:6: mesh '/dev/zero': not a regular file"},
+        {"mtllib /dev/zero", "$R info zero.obj", 4, "material library '/dev/zero': not a regular file"},
+        {"a FIFO as the scene", "rm -f fifo.rf; mkfifo fifo.rf; $R info fifo.rf", 4,
+         "refray info: fifo.rf: not a regular file"},
         {"a device as an image", "$R diff /dev/zero /dev/zero", 4, "not a regular file"},
-        {"the EXR write fails (file size limit)", "ulimit -f 0; $R render ok.rf -o big.exr --quiet", 1,
+        {"the EXR write fails (file size limit)", "ulimit -f 0; $R render ok.rf -o big.exr --quiet", 4,
          "cannot write EXR: write failed: File too large"},
-        {"an infinite radiance fails a reference render", "$R render inf.rf -o inf.exr", 1,
+        {"an infinite radiance fails a reference render", "$R render inf.rf -o inf.exr", 2,
          "float-overflowing radiance"},
         {"... and is black and counted in a preview", "$R render inf.rf -o inf.exr --preview", 0, "invalid samples"},
         {"a diff of images with Inf never passes", "$R diff $D/inf.exr $D/inf.exr", 2, "verdict: FAIL"},
         /* files */
-        {"-o the scene itself", "$R render ok.rf -o ok.rf", 2, "ok.rf: is an input (ok.rf): it is not overwritten"},
-        {"-o X --png X", "$R render ok.rf -o x.out --png x.out", 2, "is given as two outputs"},
-        {"-o /dev/full", "$R render ok.rf -o /dev/full", 2, "not a regular file (a device, directory or pipe)"},
-        {"an output folder that does not exist", "$R render ok.rf -o a.exr --png nodir/a.png", 2,
+        {"-o the scene itself", "$R render ok.rf -o ok.rf", 5, "-o ok.rf: the name must end in .exr or .png"},
+        {"-o X --png X", "$R render ok.rf -o x.png --png x.png", 5, "is given as two outputs"},
+        {"-o a name without .exr or .png", "$R render ok.rf -o x.out", 5,
+         "refray render: -o x.out: the name must end in .exr or .png (the format follows it)"},
+        {"-o /dev/full", "ln -sf /dev/full full.exr; $R render ok.rf -o full.exr", 4,
+         "not a regular file (a device, directory or pipe)"},
+        {"an output folder that does not exist", "$R render ok.rf -o a.exr --png nodir/a.png", 4,
          "nodir/a.png: cannot create a temporary file next to it"},
-        {"-o \"\"", "$R render ok.rf -o \"\"", 2, "empty output path"},
-        {"--width 0", "$R render ok.rf -o a.exr --width 0", 2, "bad value '0' for --width: an integer in [1, 65536]"},
+        {"-o \"\"", "$R render ok.rf -o \"\"", 5, "refray render: -o : the name must end in .exr or .png"},
+        {"--width 0", "$R render ok.rf -o a.exr --width 0", 5, "bad value '0' for --width: an integer in [1, 65536]"},
         {"an EXR with R only", "$R diff $D/only_r.exr $D/only_r.exr", 4, "EXR channels R: refray reads R, G and B"},
         {"an EXR with G and B only", "$R diff $D/only_gb.exr $D/only_gb.exr", 4, "EXR channels B, G"},
         {"a heatmap over one of the images", "$R diff $D/only_r.exr $D/only_gb.exr --heatmap $D/only_r.exr", 5,
          "is an input"},
         /* bad text */
         {"a UTF-8 byte order mark", "$R info bom.rf", 0, "primitives 1"},
-        {"CRLF line ends keep their positions", "$R info crlf.rf", 1, "crlf.rf:3:16: unknown attribute 'bogus'"},
+        {"CRLF line ends keep their positions", "$R info crlf.rf", 4, "crlf.rf:3:16: unknown attribute 'bogus'"},
         {"trailing garbage after a JSON line", "$R formula --batch < garbage.jsonl", 1, "not valid JSON"},
         {"a NUL byte in a batch line", "$R formula --batch < nul.jsonl", 1, "not valid JSON"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         run_case(&cases[i]);
     /* nothing half-written or damaged */
-    RF_CHECK(!exists("a.exr") && !exists("inf.exr.tmp") && !exists("big.exr") && !exists("x.out"));
+    RF_CHECK(!exists("a.exr") && !exists("inf.exr.tmp") && !exists("big.exr") && !exists("x.out") && !exists("x.png"));
     struct stat sb;
     RF_CHECK(stat("/dev/full", &sb) == 0 && S_ISCHR(sb.st_mode));
     char cmd[PATH_MAX * 2];

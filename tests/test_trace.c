@@ -164,7 +164,7 @@ static void t_trace_command(void)
     cJSON_Delete(j);
     snprintf(cmd, sizeof cmd, "%s trace scenes/whitted.rf 640 0 2>&1", rf_test_bin());
     out = rf_test_run(cmd, &code);
-    RF_CHECK(code == 2 && strstr(out, "pixel (640, 0) is not in the 640x480 image"));
+    RF_CHECK(code == 5 && strstr(out, "pixel (640, 0) is not in the 640x480 image"));
 }
 
 const RfTest rf_tests_trace[] = {

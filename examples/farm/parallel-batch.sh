@@ -7,7 +7,7 @@
 # A scene that fails stops nothing else; the script's exit code is the number of failed scenes
 # (GNU parallel's), and the log names them.
 set -eu
-[ $# -ge 2 ] || { sed -n '5,8p' "$0" >&2; exit 2; }
+[ $# -ge 2 ] || { sed -n '5,8p' "$0" >&2; exit 5; }  # usage (README: Exit codes)
 list=$1 outdir=$2
 shift 2
 hosts="2/:"

@@ -12,7 +12,7 @@
 #   RENDER OPTIONS  passed to every tile: --samples, --width, --threads (per job), ...
 # The tiles go to OUT.exr.tiles/ and are removed after a successful merge.
 set -eu
-[ $# -ge 3 ] || { sed -n '5,14p' "$0" >&2; exit 2; }
+[ $# -ge 3 ] || { sed -n '5,14p' "$0" >&2; exit 5; }  # usage (README: Exit codes)
 scene=$1 out=$2 n=$3
 shift 3
 hosts="2/:"

@@ -4,7 +4,7 @@
 #
 # usage: examples/farm/slurm-submit.sh SCENE OUT.exr N [RENDER OPTIONS...]
 set -eu
-[ $# -ge 3 ] || { sed -n '5p' "$0" >&2; exit 2; }
+[ $# -ge 3 ] || { sed -n '5p' "$0" >&2; exit 5; }  # usage (README: Exit codes)
 here=$(dirname "$0")
 scene=$1 out=$2 n=$3
 shift 3

@@ -5,6 +5,7 @@
  * two rows that bracket it, as tools/anchor_soft.py does for the anchor renderers). */
 #include "cli.h"
 #include "args.h"
+#include "exit_codes.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -44,31 +45,51 @@ typedef struct {
     int spp[MAX_SPP], nspp;                     /* ascending */
 } Args;
 
-static void usage(FILE *out)
-{
-    fprintf(out,
-            "usage: refray bench SCENE [--ref REF.exr] [--ref-samples N] [--samplers LIST] [--spp LIST]\n"
-            "                    [--runs R] [--threads T] [--width W --height H] [--seed S]\n"
-            "                    [--light-samples N] [--csv OUT.csv] [--plot OUT.png|OUT.svg]\n"
-            "                    [--anchors ANCHORS.csv] [--quiet]\n"
-            "  Run time against error: each strategy at each sample count is rendered R times\n"
-            "  (default 3); seconds = the median wall time of the render call (tracer build\n"
-            "  included, scene loading not), errors against the reference over all W x H x 3 values:\n"
-            "  RMSE = sqrt(mean (x-r)^2), relMSE = mean (x-r)^2 / (r^2 + 0.01).\n"
-            "  --ref          the reference (linear EXR of the same size); default: rendered with\n"
-            "                 --ref-samples (default 1024) sobol samples and seed S + %u, written to\n"
-            "                 <OUT>_ref.exr when --csv OUT.csv is given\n"
-            "  --samplers     default random,stratified,sobol,uniform,adaptive; adaptive is §3.9\n"
-            "                 adaptive supersampling at depths 1..3 (its spp: the mean samples taken);\n"
-            "                 NAME/L: with L shadow rays per area light and camera sample\n"
-            "  --spp          default 1,4,16,64,256\n"
-            "  --csv          rows renderer,strategy,spp,seconds,rmse,relmse (renderer \"refray\")\n"
-            "  --plot         log-log relMSE against seconds with gnuplot (OUT.gp and OUT.dat beside)\n"
-            "  --anchors      rows of other renderers in the CSV form (tools/anchor_soft.py): their\n"
-            "                 time to relMSE 1e-3 and its ratio to refray's best\n"
-            "  --quiet        no progress lines on stderr\n",
-            REF_SEED_OFFSET);
-}
+enum {
+    OPT_REF = RF_OPT_ID, OPT_REF_SAMPLES, OPT_SAMPLERS, OPT_SPP, OPT_RUNS, OPT_THREADS, OPT_WIDTH, OPT_HEIGHT, OPT_SEED,
+    OPT_LIGHT_SAMPLES, OPT_CSV, OPT_PLOT, OPT_ANCHORS, OPT_QUIET
+};
+
+static const RfOpt bench_opts[] = {
+    {"ref", OPT_REF, "REF.exr", "the reference (linear EXR of the same size); default: rendered, see below", NULL},
+    {"ref-samples", OPT_REF_SAMPLES, "N", "sobol samples of the rendered reference (default 1024)",
+     "an integer in [1, 1048576]"},
+    {"samplers", OPT_SAMPLERS, "LIST", "default random,stratified,sobol,uniform,adaptive; NAME/L: L shadow rays",
+     "a comma-separated list of uniform, random, stratified, sobol, adaptive, each NAME or NAME/L"},
+    {"spp", OPT_SPP, "LIST", "sample counts per pixel (default 1,4,16,64,256)",
+     "a comma-separated list of integers in [1, 1048576]"},
+    {"runs", OPT_RUNS, "R", "renders per row; the median time counts (default 3)", "an integer in [1, 100]"},
+    {"threads", OPT_THREADS, "T", "worker threads (default: one per processor)", "an integer in [1, 1024]"},
+    {"width", OPT_WIDTH, "W", "image width (default: the scene's)", "an integer in [1, 65536]"},
+    {"height", OPT_HEIGHT, "H", "image height (default: the scene's)", "an integer in [1, 65536]"},
+    {"seed", OPT_SEED, "S", "seed of the random samplers (default 1)", "an integer in [0, 2147483647]"},
+    {"light-samples", OPT_LIGHT_SAMPLES, "N", "shadow rays per area light and camera sample",
+     "an integer in [1, 65536]"},
+    {"csv", OPT_CSV, "OUT.csv", "rows renderer,strategy,spp,seconds,rmse,relmse (renderer \"refray\")", NULL},
+    {"plot", OPT_PLOT, "OUT.png|OUT.svg", "log-log relMSE against seconds with gnuplot (OUT.gp, OUT.dat beside)",
+     "a file name ending in .png or .svg"},
+    {"anchors", OPT_ANCHORS, "ANCHORS.csv", "other renderers' rows (tools/anchor_soft.py): time to relMSE 1e-3",
+     NULL},
+    {"quiet", OPT_QUIET, NULL, "no progress lines on stderr", NULL},
+    RF_OPT_TABLE_END,
+};
+
+static const RfOpt *const bench_tables[] = {bench_opts, NULL};
+
+static const RfCommand bench_cmd = {
+    "refray bench",
+    "refray bench [options] SCENE\n",
+    "Run time against error: each strategy at each sample count is rendered R times\n"
+    "(default 3); seconds = the median wall time of the render call (tracer build\n"
+    "included, scene loading not), errors against the reference over all W x H x 3 values:\n"
+    "RMSE = sqrt(mean (x-r)^2), relMSE = mean (x-r)^2 / (r^2 + 0.01).\n",
+    bench_tables,
+    "Without --ref the reference is rendered with --ref-samples sobol samples and seed\n"
+    "S + 1000003 (REF_SEED_OFFSET), and written to <OUT>_ref.exr when --csv OUT.csv is given. adaptive is §3.9\n"
+    "adaptive supersampling at depths 1..3 (its spp: the mean samples taken). --anchors:\n"
+    "their time to relMSE 1e-3 and its ratio to refray's best.\n"
+    "exit: 0 ok, 2 a render failed, 4 a file cannot be read or written, 5 usage (README: Exit codes)\n",
+};
 
 static double now(void)
 {
@@ -133,75 +154,52 @@ static int parse_spp(const char *v, Args *a)
     return a->nspp > 0;
 }
 
-/* 0: run; 1: help was printed (exit 0); 2: a usage error was reported (exit 2). */
+/* -1: run; else the exit code (--help, --version or a usage error, reported). */
 static int parse_args(int argc, char **argv, Args *a)
 {
     memset(a, 0, sizeof *a);
     a->ref_samples = 1024, a->runs = 3, a->seed = 1;
     parse_strategies("random,stratified,sobol,uniform,adaptive", a);
     parse_spp("1,4,16,64,256", a);
-    for (int i = 1; i < argc; i++) {
-        const char *o = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int ok = 1, takes = 1;
-        if (strcmp(o, "--help") == 0 || strcmp(o, "-h") == 0) {
-            usage(stdout);
-            return 1;
-        } else if (strcmp(o, "--quiet") == 0) {
-            a->quiet = 1, takes = 0;
-        } else if (o[0] != '-') {
-            if (a->scene) {
-                fprintf(stderr, "refray bench: one scene only, '%s' is a second (see: refray bench --help)\n", o);
-                return 2;
-            }
-            a->scene = o, takes = 0;
-        } else if (!v) {
-            ok = 0;
-        } else if (strcmp(o, "--ref") == 0) {
-            a->ref = v;
-        } else if (strcmp(o, "--csv") == 0) {
-            a->csv = v;
-        } else if (strcmp(o, "--anchors") == 0) {
-            a->anchors = v;
-        } else if (strcmp(o, "--plot") == 0) {
+    RfOptParser p;
+    int key;
+    rf_opt_init(&p, &bench_cmd, argc, argv);
+    while ((key = rf_opt_next(&p)) != RF_OPT_DONE) {
+        const char *v = p.value;
+        int ok = 1;
+        switch (key) {
+        case RF_OPT_EXIT: return p.exit_code;
+        case OPT_QUIET: a->quiet = 1; break;
+        case OPT_REF: a->ref = v; break;
+        case OPT_CSV: a->csv = v; break;
+        case OPT_ANCHORS: a->anchors = v; break;
+        case OPT_PLOT: {
             const char *dot = strrchr(v, '.');
             a->plot = v;
             ok = dot && (strcmp(dot, ".png") == 0 || strcmp(dot, ".svg") == 0);
-        } else if (strcmp(o, "--ref-samples") == 0) {
-            ok = rf_arg_int(v, 1, 1 << 20, &a->ref_samples);
-        } else if (strcmp(o, "--samplers") == 0) {
-            ok = parse_strategies(v, a);
-        } else if (strcmp(o, "--spp") == 0) {
-            ok = parse_spp(v, a);
-        } else if (strcmp(o, "--runs") == 0) {
-            ok = rf_arg_int(v, 1, MAX_RUNS, &a->runs);
-        } else if (strcmp(o, "--threads") == 0) {
-            ok = rf_arg_int(v, 1, 1024, &a->threads);
-        } else if (strcmp(o, "--width") == 0) {
-            ok = rf_arg_int(v, 1, 65536, &a->width);
-        } else if (strcmp(o, "--height") == 0) {
-            ok = rf_arg_int(v, 1, 65536, &a->height);
-        } else if (strcmp(o, "--seed") == 0) {
-            ok = rf_arg_int(v, 0, 2147483647, &a->seed);
-        } else if (strcmp(o, "--light-samples") == 0) {
-            ok = rf_arg_int(v, 1, 1 << 16, &a->light_samples);
-        } else {
-            fprintf(stderr, "refray bench: unknown option '%s' (see: refray bench --help)\n", o);
-            return 2;
+            break;
         }
-        if (!ok) {
-            if (!v && takes)
-                fprintf(stderr, "refray bench: %s needs a value (see: refray bench --help)\n", o);
-            else
-                fprintf(stderr, "refray bench: bad value '%s' for %s (see: refray bench --help)\n", v, o);
-            return 2;
+        case OPT_REF_SAMPLES: ok = rf_arg_int(v, 1, 1 << 20, &a->ref_samples); break;
+        case OPT_SAMPLERS: ok = parse_strategies(v, a); break;
+        case OPT_SPP: ok = parse_spp(v, a); break;
+        case OPT_RUNS: ok = rf_arg_int(v, 1, MAX_RUNS, &a->runs); break;
+        case OPT_THREADS: ok = rf_arg_int(v, 1, 1024, &a->threads); break;
+        case OPT_WIDTH: ok = rf_arg_int(v, 1, 65536, &a->width); break;
+        case OPT_HEIGHT: ok = rf_arg_int(v, 1, 65536, &a->height); break;
+        case OPT_SEED: ok = rf_arg_int(v, 0, 2147483647, &a->seed); break;
+        case OPT_LIGHT_SAMPLES: ok = rf_arg_int(v, 1, 1 << 16, &a->light_samples); break;
         }
-        i += takes;
+        if (!ok)
+            return rf_opt_bad_value(&p);
     }
-    if (!a->scene) {
-        usage(stderr);
-        return 2;
-    }
-    return 0;
+    char **ops;
+    int n = rf_opt_operands(&p, &ops);
+    if (n == 0)
+        return rf_opt_usage_error(&bench_cmd, "missing the scene file");
+    if (n > 1)
+        return rf_opt_usage_error(&bench_cmd, "one scene only, '%s' is a second", ops[1]);
+    a->scene = ops[0];
+    return -1;
 }
 
 /* ---- measuring ---------------------------------------------------------------------------- */
@@ -463,7 +461,7 @@ static int write_plot(const Args *a, const char *title, const Row *rows, int n, 
             fclose(gp);
         if (dat)
             fclose(dat);
-        return 1;
+        return RF_EXIT_FILE;
     }
     int svg = strcmp(strrchr(a->plot, '.'), ".svg") == 0, block = 0;
     fprintf(gp, "# refray bench: relMSE against run time; run: gnuplot %s\n", gp_path);
@@ -484,7 +482,7 @@ static int write_plot(const Args *a, const char *title, const Row *rows, int n, 
     werr |= fclose(dat) != 0;
     if (werr) {
         fprintf(stderr, "refray bench: cannot write %s or %s\n", gp_path, dat_path);
-        return 1;
+        return RF_EXIT_FILE;
     }
     int rc = run_gnuplot(gp_path);
     if (rc == 127) {
@@ -494,7 +492,7 @@ static int write_plot(const Args *a, const char *title, const Row *rows, int n, 
     }
     if (rc != 0) {
         fprintf(stderr, "refray bench: gnuplot failed on %s (exit %d)\n", gp_path, rc);
-        return 1;
+        return RF_EXIT_FAIL;
     }
     printf("plot: %s (gnuplot script %s)\n", a->plot, gp_path);
     return 0;
@@ -551,13 +549,13 @@ static int get_reference(const Args *a, const RfScene *scene, RfRenderOptions op
     if (a->ref) {
         if (rf_exr_read(a->ref, ref, err, sizeof err) != RF_OK) {
             fprintf(stderr, "refray bench: %s\n", err);
-            return 1;
+            return RF_EXIT_FILE;
         }
         if (ref->width != w || ref->height != h || ref->channels < 3) {
             fprintf(stderr, "refray bench: the reference %s is %dx%d with %d channel%s; the renders are %dx%d RGB\n",
                     a->ref, ref->width, ref->height, ref->channels, ref->channels == 1 ? "" : "s", w, h);
             rf_image_free(ref);
-            return 1;
+            return RF_EXIT_SIZE;
         }
         printf("reference: %s\n", a->ref);
         return 0;
@@ -569,7 +567,7 @@ static int get_reference(const Args *a, const RfScene *scene, RfRenderOptions op
     RfStatus s = rf_render(scene, &opt, ref, &st);
     if (s != RF_OK) {
         fprintf(stderr, "refray bench: %s: reference render: %s\n", a->scene, rf_status_str(s));
-        return 1;
+        return RF_EXIT_FAIL;
     }
     printf("reference: %d spp sobol, seed %llu, rendered in %.3f s", a->ref_samples, (unsigned long long)opt.seed,
            now() - t0);
@@ -582,7 +580,7 @@ static int get_reference(const Args *a, const RfScene *scene, RfRenderOptions op
         if (rf_exr_write(path, ref, &attr, 1, err, sizeof err) != RF_OK) {
             fprintf(stderr, "\nrefray bench: %s\n", err);
             rf_image_free(ref);
-            return 1;
+            return RF_EXIT_FILE;
         }
         printf(", written to %s", path);
     }
@@ -615,7 +613,7 @@ static int measure_all(const Args *a, const RfScene *scene, RfRenderOptions opt,
             if (rs != RF_OK) {
                 fprintf(stderr, "refray bench: %s: %s: %s\n", a->scene, a->name[s],
                         rf_status_str(rs));
-                return 1;
+                return RF_EXIT_FAIL;
             }
             snprintf(r->renderer, sizeof r->renderer, "refray");
             snprintf(r->strategy, sizeof r->strategy, "%s", a->name[s]);
@@ -624,7 +622,7 @@ static int measure_all(const Args *a, const RfScene *scene, RfRenderOptions opt,
             rf_image_free(&img);
             if (!ok) {
                 fprintf(stderr, "refray bench: the image and the reference differ in size\n");
-                return 1;
+                return RF_EXIT_SIZE;
             }
             if (!a->quiet) {
                 fprintf(stderr, "refray bench: [%d/%d] %s", *n, total, r->strategy);
@@ -641,35 +639,35 @@ int rf_cmd_bench(int argc, char **argv)
 {
     Args a;
     int rc = parse_args(argc, argv, &a);
-    if (rc)
-        return rc == 1 ? 0 : 2;
+    if (rc >= 0)
+        return rc;
 
     static Row rows[MAX_STRATEGIES * MAX_SPP], anchors[MAX_ANCHOR_ROWS];
     int n = 0, na = 0;
     char err[1024];
     if (a.anchors && !read_anchors(a.anchors, anchors, MAX_ANCHOR_ROWS, &na, err, sizeof err)) {
         fprintf(stderr, "refray bench: %s\n", err);
-        return 1;
+        return RF_EXIT_FILE;
     }
     RfScene scene;
     RfLoadOptions lopt = rf_load_options_default();
     rf_scene_init(&scene);
     if (rf_scene_load(a.scene, &lopt, &scene, err, sizeof err) != RF_OK) {
-        fprintf(stderr, "%s\n", err);
-        return 1;
+        rf_arg_report("refray bench", err);
+        return RF_EXIT_FILE;
     }
     int w = a.width > 0 ? a.width : scene.render.width, h = a.height > 0 ? a.height : scene.render.height;
     if ((double)w * (double)h > (double)RF_IMAGE_MAX_PIXELS) {
         fprintf(stderr, "refray bench: %d x %d pixels is more than the %zu an image may have\n", w, h,
                 (size_t)RF_IMAGE_MAX_PIXELS);
         rf_scene_free(&scene);
-        return 2;
+        return RF_EXIT_USAGE;
     }
     FILE *csv = a.csv ? fopen(a.csv, "w") : NULL; /* opened first: a bad path fails before the renders */
     if (a.csv && !csv) {
         fprintf(stderr, "refray bench: cannot write %s\n", a.csv);
         rf_scene_free(&scene);
-        return 1;
+        return RF_EXIT_FILE;
     }
     RfRenderOptions opt = rf_render_options_default();
     opt.width = w, opt.height = h, opt.threads = a.threads, opt.light_samples = a.light_samples;
@@ -691,7 +689,7 @@ int rf_cmd_bench(int argc, char **argv)
             write_csv(csv, rows, n);
         if ((ferror(csv) | fclose(csv)) != 0 && rc == 0) {
             fprintf(stderr, "refray bench: cannot write %s\n", a.csv);
-            rc = 1;
+            rc = RF_EXIT_FILE;
         }
         if (rc == 0)
             printf("csv: %s\n", a.csv);

@@ -1,6 +1,8 @@
 /* `refray chromaticity`: the CIE 1931 xy chromaticity diagram of §1.5 (PNG or SVG, drawn with
  * cairo), and `refray metamers`: the metamerism example of §1.3.1 as numbers and a plot. */
 #include "cli.h"
+#include "args.h"
+#include "exit_codes.h"
 
 #include <cairo-svg.h>
 #include <cairo.h>
@@ -60,12 +62,6 @@ static int parse_primaries(const char *s, RfVec2 p[3])
             s++;
     }
     return s != NULL && *s != 0;
-}
-
-static int ends_with(const char *s, const char *suffix)
-{
-    size_t n = strlen(s), k = strlen(suffix);
-    return n >= k && strcmp(s + n - k, suffix) == 0;
 }
 
 /* Writes the surface's picture to path through a temporary name (no partial output file). */
@@ -351,20 +347,34 @@ static void draw_diagram(cairo_t *cr, const void *data, int w, int h)
     text_at(cr, w / 2.0, margin * 0.45, 0.5, 0.5, "CIE 1931 xy chromaticity diagram (2\xc2\xb0 observer)");
 }
 
-static void chroma_usage(FILE *out)
-{
-    fprintf(out,
-            "usage: refray chromaticity -o FILE.png|FILE.svg [options]\n"
-            "  draws the CIE 1931 xy diagram (§1.5): the spectral locus labelled in nm, the purple\n"
-            "  line, the white point, a device gamut, points with their dominant wavelength and\n"
-            "  gamut-mapped points; prints the numbers it drew.\n"
-            "  --primaries x,y;x,y;x,y  gamut triangle (default sRGB 0.64,0.33;0.30,0.60;0.15,0.06)\n"
-            "  --white x,y              white point (default 1/3,1/3, the script's)\n"
-            "  --point x,y              a colour; its dominant wavelength is drawn (repeatable)\n"
-            "  --map x,y                a colour mapped into the gamut (repeatable)\n"
-            "  --method toward-white|nearest   gamut mapping (default toward-white)\n"
-            "  --size N                 picture size in pixels (default 900)\n");
-}
+enum { OPT_PRIMARIES = RF_OPT_ID, OPT_WHITE, OPT_POINT, OPT_MAP, OPT_METHOD, OPT_SIZE };
+
+static const RfOpt chroma_opts[] = {
+    {"output", 'o', "FILE", "the diagram: .png or .svg", NULL},
+    {"primaries", OPT_PRIMARIES, "x,y;x,y;x,y", "gamut triangle (default sRGB 0.64,0.33;0.30,0.60;0.15,0.06)",
+     "three x,y pairs separated by ';'"},
+    {"white", OPT_WHITE, "x,y", "white point (default 1/3,1/3, the script's)", "x,y: two numbers"},
+    {"point", OPT_POINT, "x,y", "a colour; its dominant wavelength is drawn (repeatable, up to 32)",
+     "x,y: two numbers (32 points at most)"},
+    {"map", OPT_MAP, "x,y", "a colour mapped into the gamut (repeatable, up to 32)",
+     "x,y: two numbers (32 points at most)"},
+    {"method", OPT_METHOD, "toward-white|nearest", "gamut mapping (default toward-white)", "toward-white or nearest"},
+    {"size", OPT_SIZE, "N", "picture size in pixels (default 900)", "an integer in [200, 8000]"},
+    RF_OPT_TABLE_END,
+};
+
+static const RfOpt *const chroma_tables[] = {chroma_opts, NULL};
+
+static const RfCommand chroma_cmd = {
+    "refray chromaticity",
+    "refray chromaticity -o FILE.png|FILE.svg [options]\n",
+    "Draws the CIE 1931 xy diagram (§1.5): the spectral locus labelled in nm, the purple\n"
+    "line, the white point, a device gamut, points with their dominant wavelength and\n"
+    "gamut-mapped points; prints the numbers it drew.\n",
+    chroma_tables,
+    "exit: 0 ok, 2 a point cannot be computed (it is the white point), 4 the picture cannot be\n"
+    "written, 5 usage (README: Exit codes)\n",
+};
 
 int rf_cmd_chromaticity(int argc, char **argv)
 {
@@ -374,54 +384,44 @@ int rf_cmd_chromaticity(int argc, char **argv)
     o.white = rf_vec2(1.0 / 3.0, 1.0 / 3.0);
     o.size = 900;
     o.gamut_name = "sRGB";
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    RfOptParser p;
+    int key;
+    rf_opt_init(&p, &chroma_cmd, argc, argv);
+    while ((key = rf_opt_next(&p)) != RF_OPT_DONE) {
+        const char *v = p.value;
         int bad = 0;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            chroma_usage(stdout);
-            return 0;
-        }
-        if (!v) {
-            fprintf(stderr, "refray chromaticity: '%s' needs a value (or is unknown)\n", a);
-            return 2;
-        }
-        if (strcmp(a, "-o") == 0)
+        if (key == RF_OPT_EXIT)
+            return p.exit_code;
+        if (key == 'o')
             o.out = v;
-        else if (strcmp(a, "--primaries") == 0)
+        else if (key == OPT_PRIMARIES)
             bad = parse_primaries(v, o.primaries), o.gamut_name = "given primaries";
-        else if (strcmp(a, "--white") == 0)
+        else if (key == OPT_WHITE)
             bad = parse_xy(v, &o.white);
-        else if (strcmp(a, "--point") == 0)
+        else if (key == OPT_POINT)
             bad = o.n_points >= MAX_MARKS || parse_xy(v, &o.points[o.n_points++]);
-        else if (strcmp(a, "--map") == 0)
+        else if (key == OPT_MAP)
             bad = o.n_maps >= MAX_MARKS || parse_xy(v, &o.maps[o.n_maps++]);
-        else if (strcmp(a, "--method") == 0) {
+        else if (key == OPT_METHOD) {
             bad = strcmp(v, "toward-white") != 0 && strcmp(v, "nearest") != 0;
             o.method = strcmp(v, "nearest") == 0 ? RF_GAMUT_NEAREST : RF_GAMUT_TOWARD_WHITE;
-        } else if (strcmp(a, "--size") == 0) {
-            char *end;
-            long n = strtol(v, &end, 10);
-            bad = *end != 0 || n < 200 || n > 8000;
-            o.size = (int)n;
-        } else {
-            fprintf(stderr, "refray chromaticity: unknown option '%s' (see --help)\n", a);
-            return 2;
-        }
-        if (bad) {
-            fprintf(stderr, "refray chromaticity: bad value for %s: '%s'\n", a, v);
-            return 2;
-        }
-        i++;
+        } else if (key == OPT_SIZE)
+            bad = !rf_arg_int(v, 200, 8000, &o.size);
+        if (bad)
+            return rf_opt_bad_value(&p);
     }
-    if (!o.out || !(ends_with(o.out, ".png") || ends_with(o.out, ".svg"))) {
-        fprintf(stderr, "refray chromaticity: need -o FILE.png or -o FILE.svg\n");
-        return 2;
-    }
-    o.svg = ends_with(o.out, ".svg");
+    char **ops;
+    if (rf_opt_operands(&p, &ops) > 0)
+        return rf_opt_usage_error(&chroma_cmd, "unexpected '%s': the diagram takes options only", ops[0]);
+    if (!o.out)
+        return rf_opt_usage_error(&chroma_cmd, "missing the output: -o FILE.png or -o FILE.svg");
+    if (!rf_arg_image_format("refray chromaticity", "-o", o.out, RF_IMAGE_PNG | RF_IMAGE_SVG))
+        return RF_EXIT_USAGE;
+    o.svg = rf_arg_image_format("refray chromaticity", "-o", o.out, RF_IMAGE_SVG | RF_IMAGE_PNG) == RF_IMAGE_SVG;
     double bary[3];
     if (rf_gamut_barycentric(o.white, o.primaries, bary) != RF_OK) {
         fprintf(stderr, "refray chromaticity: the primaries are collinear\n");
-        return 2;
+        return RF_EXIT_USAGE;
     }
     /* the numbers behind the picture */
     printf("white (%.6f, %.6f); gamut (%s) (%.4f, %.4f) (%.4f, %.4f) (%.4f, %.4f)\n", o.white.x,
@@ -433,7 +433,7 @@ int rf_cmd_chromaticity(int argc, char **argv)
         if (st != RF_OK) {
             fprintf(stderr, "refray chromaticity: point %d (%g, %g): %s\n", i + 1, o.points[i].x,
                     o.points[i].y, st == RF_ERR_DEGENERATE ? "is the white point" : "white point outside the locus");
-            return 1;
+            return RF_EXIT_FAIL;
         }
         printf("C%d (%.4f, %.4f): dominant %.4f nm%s, purity %.4f, complementary ", i + 1,
                o.points[i].x, o.points[i].y, d.lambda_nm, d.on_purple_line ? " (purple: minus complementary)" : "",
@@ -447,14 +447,14 @@ int rf_cmd_chromaticity(int argc, char **argv)
         RfVec2 q;
         if (rf_gamut_map(o.maps[i], o.primaries, o.white, o.method, &q) != RF_OK) {
             fprintf(stderr, "refray chromaticity: toward-white needs the white point inside the gamut\n");
-            return 1;
+            return RF_EXIT_FAIL;
         }
         printf("M%d (%.4f, %.4f) -> (%.6f, %.6f), %s, shift %.6f\n", i + 1, o.maps[i].x, o.maps[i].y,
                q.x, q.y, o.method == RF_GAMUT_NEAREST ? "nearest" : "toward white",
                hypot(q.x - o.maps[i].x, q.y - o.maps[i].y));
     }
     if (render(o.out, o.svg, o.size, o.size, draw_diagram, &o))
-        return 1;
+        return RF_EXIT_FILE;
     printf("wrote %s\n", o.out);
     return 0;
 }
@@ -535,43 +535,50 @@ static void draw_metamers(cairo_t *cr, const void *data, int w, int h)
 #undef MY
 }
 
+static const RfOpt metamers_opts[] = {
+    {"output", 'o', "FILE", "plot the two spectra: .png or .svg", NULL},
+    {"size", OPT_SIZE, "N", "plot width in pixels (default 800)", "an integer in [200, 8000]"},
+    RF_OPT_TABLE_END,
+};
+
+static const RfOpt *const metamers_tables[] = {metamers_opts, NULL};
+
+static const RfCommand metamers_cmd = {
+    "refray metamers",
+    "refray metamers [-o FILE.png|FILE.svg] [--size N]\n",
+    "Builds two clearly different spectra with the same CIE 1931 XYZ and the same CIE 2006\n"
+    "LMS (§1.3.1), prints them and their tristimulus values, and plots them.\n",
+    metamers_tables,
+    "exit: 0 ok, 2 no metamer found, 4 the plot cannot be written, 5 usage (README: Exit codes)\n",
+};
+
 int rf_cmd_metamers(int argc, char **argv)
 {
-    static const char usage[] =
-        "usage: refray metamers [-o FILE.png|FILE.svg] [--size N]\n"
-        "  builds two clearly different spectra with the same CIE 1931 XYZ and the same CIE 2006\n"
-        "  LMS (§1.3.1), prints them and their tristimulus values, and plots them.\n";
     Metamers m;
     const char *out = NULL;
     m.size = 800;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            fputs(usage, stdout);
-            return 0;
-        }
-        if (i + 1 < argc && strcmp(argv[i], "-o") == 0) {
-            out = argv[++i];
-        } else if (i + 1 < argc && strcmp(argv[i], "--size") == 0) {
-            m.size = atoi(argv[++i]);
-            if (m.size < 200 || m.size > 8000) {
-                fprintf(stderr, "refray metamers: --size must lie in 200..8000\n");
-                return 2;
-            }
-        } else {
-            fputs(usage, stderr);
-            return 2;
-        }
+    RfOptParser p;
+    int key;
+    rf_opt_init(&p, &metamers_cmd, argc, argv);
+    while ((key = rf_opt_next(&p)) != RF_OPT_DONE) {
+        if (key == RF_OPT_EXIT)
+            return p.exit_code;
+        if (key == 'o')
+            out = p.value;
+        else if (key == OPT_SIZE && !rf_arg_int(p.value, 200, 8000, &m.size))
+            return rf_opt_bad_value(&p);
     }
-    if (out && !(ends_with(out, ".png") || ends_with(out, ".svg"))) {
-        fprintf(stderr, "refray metamers: the output must end in .png or .svg\n");
-        return 2;
-    }
+    char **ops;
+    if (rf_opt_operands(&p, &ops) > 0)
+        return rf_opt_usage_error(&metamers_cmd, "unexpected '%s': metamers takes options only", ops[0]);
+    if (out && !rf_arg_image_format("refray metamers", "-o", out, RF_IMAGE_PNG | RF_IMAGE_SVG))
+        return RF_EXIT_USAGE;
     double lam[MET_N];
     for (int i = 0; i < MET_N; i++)
         lam[i] = MET_FIRST + i, m.p1[i] = 1.0;
     if (rf_metamer(MET_FIRST, MET_N, m.p1, 0.9, m.p2) != RF_OK) {
         fprintf(stderr, "refray metamers: no metamer found\n");
-        return 1;
+        return RF_EXIT_FAIL;
     }
     const double *ps[2] = {m.p1, m.p2};
     printf("spectrum  X                   Y                   Z                   L                   M                   S\n");
@@ -586,8 +593,9 @@ int rf_cmd_metamers(int argc, char **argv)
     for (int i = 0; i < MET_N; i += 20)
         printf("%d %.1f %.6f\n", MET_FIRST + i, m.p1[i], m.p2[i]);
     if (out) {
-        if (render(out, ends_with(out, ".svg"), m.size, m.size * 5 / 8, draw_metamers, &m))
-            return 1;
+        if (render(out, rf_arg_image_format("refray metamers", "-o", out, RF_IMAGE_SVG | RF_IMAGE_PNG) == RF_IMAGE_SVG,
+                   m.size, m.size * 5 / 8, draw_metamers, &m))
+            return RF_EXIT_FILE;
         printf("wrote %s\n", out);
     }
     return 0;

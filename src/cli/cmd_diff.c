@@ -2,6 +2,7 @@
  * silhouettes given depth images, writes heatmaps, and exits like OpenImageIO's idiff. */
 #include "cli.h"
 #include "args.h"
+#include "exit_codes.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -11,39 +12,64 @@
 #include "refray/image.h"
 #include "refray/transfer.h"
 
-/* idiff's codes (0 pass, 1 warn, 2 fail, 3 size/channel mismatch, 4 file error), plus 5 for a
- * command-line error, which idiff has no separate code for */
-enum { EXIT_MISMATCH = 3, EXIT_FILE = 4, EXIT_USAGE = 5 };
+enum {
+    OPT_HEATMAP = RF_OPT_ID, OPT_DEPTH_HEATMAP, OPT_DEPTH_A, OPT_DEPTH_B, OPT_WARN, OPT_WARNPERCENT, OPT_FAIL,
+    OPT_FAILPERCENT, OPT_FAIL_MEAN, OPT_HARDFAIL, OPT_DEPTH_EDGE, OPT_AS_IS, OPT_SPACE, OPT_KV, OPT_STAT, OPT_VAR_A,
+    OPT_VAR_B, OPT_ALPHA, OPT_ACCEPT
+};
 
-static void usage(FILE *out)
-{
-    fprintf(out,
-            "usage: refray diff A B [--heatmap OUT.png] [--depth-a DA.exr --depth-b DB.exr]\n"
-            "                   [--depth-heatmap OUT.png] [--warn X] [--warnpercent P] [--fail Y]\n"
-            "                   [--failpercent P] [--fail-mean M] [--hardfail H] [--depth-edge E]\n"
-            "                   [--gamma G | --srgb | --as-is] [--space linear|display] [--kv]\n"
-            "       refray diff A B --stat --var-a VA.exr --var-b VB.exr [--alpha A] [--accept S]\n"
-            "                   [--heatmap P.png] [--kv]\n"
-            "  A is the image under test, B the reference (EXR or PNG; PNG is decoded with --gamma G,\n"
-            "  default 2.2, or --srgb). --space display compares the gamma/sRGB-encoded values, so\n"
-            "  that one 8-bit code is 1/255 (the default when A or B is a PNG: grading a student's\n"
-            "  PNG); linear compares linear values (the default for two EXRs).\n"
-            "  With depth images, pixels at depth discontinuities (silhouettes) of either are\n"
-            "  reported separately and the verdict uses the others.\n"
-            "  FAIL: more than --failpercent %% (0.1) of pixels differ by more than --fail (1/255),\n"
-            "        the mean difference exceeds --fail-mean (1e-4), a pixel exceeds --hardfail\n"
-            "        (off), or a value is NaN/Inf on one side; WARN: more than --warnpercent %% (0.1)\n"
-            "        differ by more than --warn (1e-4); otherwise PASS. In display values the defaults\n"
-            "        allow 8-bit rounding: --fail-mean 1/255, --warn 0.5/255.\n"
-            "  --stat: two noisy renders (EXR) with their variances (refray render --variance) by a\n"
-            "        per-pixel z-test: |a - b| / sqrt(va + vb) per channel, the pixel's p the smallest\n"
-            "        channel's times 3; a pixel accepts when p > 1 - (1 - A)^(1/pixels) (A = --alpha,\n"
-            "        0.01: Sidak over the pixels); PASS when at least --accept (0.9975) of the pixels\n"
-            "        accept (Mitsuba 3's test), else FAIL; --heatmap shows -log10 p (white: p = 1e-6)\n"
-            "  --kv prints key=value lines (for scripts).\n"
-            "exit: 0 pass, 1 warn, 2 fail, 3 size or channel mismatch, 4 file error, 5 usage error\n");
-}
+static const RfOpt diff_opts[] = {
+    {"heatmap", OPT_HEATMAP, "FILE", "the per-pixel error as a heat map (.png or .exr); with --stat -log10 p", NULL},
+    {"depth-a", OPT_DEPTH_A, "DA.exr", "A's depth image (refray render --depth-out): silhouettes are masked", NULL},
+    {"depth-b", OPT_DEPTH_B, "DB.exr", "B's depth image (with --depth-a)", NULL},
+    {"depth-heatmap", OPT_DEPTH_HEATMAP, "FILE", "the relative depth error as a heat map (.png or .exr)", NULL},
+    {"warn", OPT_WARN, "X", "a pixel differing by more than X counts for WARN (default 1e-4)", "a number >= 0"},
+    {"warnpercent", OPT_WARNPERCENT, "P", "WARN when more than P % of the pixels do (default 0.1)", "a number >= 0"},
+    {"fail", OPT_FAIL, "Y", "a pixel differing by more than Y counts for FAIL (default 1/255)", "a number >= 0"},
+    {"failpercent", OPT_FAILPERCENT, "P", "FAIL when more than P % of the pixels do (default 0.1)", "a number >= 0"},
+    {"fail-mean", OPT_FAIL_MEAN, "M", "FAIL when the mean difference exceeds M (default 1e-4)", "a number >= 0"},
+    {"hardfail", OPT_HARDFAIL, "H", "FAIL when any pixel differs by more than H (default off)", "a number >= 0"},
+    {"depth-edge", OPT_DEPTH_EDGE, "E", "relative depth jump that makes a silhouette pixel", "a number >= 0"},
+    {"as-is", OPT_AS_IS, NULL, "PNG values as stored (no decoding curve)", NULL},
+    {"space", OPT_SPACE, "linear|display", "compare linear or display (encoded) values (default: display for a PNG)",
+     "linear or display"},
+    {"kv", OPT_KV, NULL, "key=value lines (for scripts)", NULL},
+    {"stat", OPT_STAT, NULL, "per-pixel z-test of two noisy renders with their variances", NULL},
+    {"var-a", OPT_VAR_A, "VA.exr", "with --stat: A's variance (refray render --variance)", NULL},
+    {"var-b", OPT_VAR_B, "VB.exr", "with --stat: B's variance", NULL},
+    {"alpha", OPT_ALPHA, "A", "with --stat: the significance level over all pixels (default 0.01)",
+     "a number in (0, 1)"},
+    {"accept", OPT_ACCEPT, "S", "with --stat: PASS when this share of the pixels accepts (default 0.9975)",
+     "a number in [0, 1]"},
+    RF_OPT_TABLE_END,
+};
 
+static const RfOpt *const diff_tables[] = {diff_opts, rf_opts_png, NULL};
+
+static const RfCommand diff_cmd = {
+    "refray diff",
+    "refray diff [options] A B\n"
+    "       refray diff --stat --var-a VA.exr --var-b VB.exr [options] A B\n",
+    "A is the image under test, B the reference (EXR or PNG; PNG is decoded with --gamma G,\n"
+    "default 2.2, or --srgb). --space display compares the gamma/sRGB-encoded values, so\n"
+    "that one 8-bit code is 1/255 (the default when A or B is a PNG: grading a student's\n"
+    "PNG); linear compares linear values (the default for two EXRs).\n"
+    "With depth images, pixels at depth discontinuities (silhouettes) of either are\n"
+    "reported separately and the verdict uses the others.\n",
+    diff_tables,
+    "FAIL: more than --failpercent % (0.1) of pixels differ by more than --fail (1/255),\n"
+    "      the mean difference exceeds --fail-mean (1e-4), a pixel exceeds --hardfail\n"
+    "      (off), or a value is NaN/Inf on one side; WARN: more than --warnpercent % (0.1)\n"
+    "      differ by more than --warn (1e-4); otherwise PASS. In display values the defaults\n"
+    "      allow 8-bit rounding: --fail-mean 1/255, --warn 0.5/255.\n"
+    "--stat: two noisy renders (EXR) with their variances (refray render --variance) by a\n"
+    "      per-pixel z-test: |a - b| / sqrt(va + vb) per channel, the pixel's p the smallest\n"
+    "      channel's times 3; a pixel accepts when p > 1 - (1 - A)^(1/pixels) (A = --alpha,\n"
+    "      0.01: Sidak over the pixels); PASS when at least --accept (0.9975) of the pixels\n"
+    "      accept (Mitsuba 3's test), else FAIL\n"
+    "exit (idiff's): 0 pass, 1 warn, 2 fail, 3 size or channel mismatch, 4 file error,\n"
+    "5 usage (README: Exit codes)\n",
+};
 
 static int is_png(const char *path)
 {
@@ -91,16 +117,19 @@ static void print_stats(const char *title, const char *key, const RfDiffStats *s
            s->psnr);
     printf("  relMSE          %.6g   (mean (A-B)^2 / (B^2 + 0.01))\n", s->rel_mse);
     printf("  above 1/255     %ld (%.4f %%)\n", s->above_255, rf_diff_percent(s->above_255, s));
-    printf("  above warn %-5g%ld (%.4f %%)\n", o->warn, s->above_warn, rf_diff_percent(s->above_warn, s));
-    printf("  above fail %-5.3g%ld (%.4f %%)\n", o->fail, s->above_fail, rf_diff_percent(s->above_fail, s));
+    /* the threshold, then the count: a blank between them always (%-9g alone may fill its field) */
+    printf("  above warn %-9g %ld (%.4f %%)\n", o->warn, s->above_warn, rf_diff_percent(s->above_warn, s));
+    printf("  above fail %-9g %ld (%.4f %%)\n", o->fail, s->above_fail, rf_diff_percent(s->above_fail, s));
     if (s->nonfinite)
         printf("  NaN/Inf         %ld pixels\n", s->nonfinite);
 }
 
-static int write_png(const char *path, const RfImage *img, char *err, size_t errsz)
+/* A heat map: a PNG of its values as they are, or an EXR of the same values. */
+static int write_heatmap(const char *path, const RfImage *img, char *err, size_t errsz)
 {
     RfPngOptions p = {RF_PNG_AS_IS, 1.0, 8, NULL};
-    return rf_png_write(path, img, p, err, errsz) == RF_OK;
+    RfExrOptions e = {RF_EXR_ZIP, 0, NULL, 0, 0, 0, 0};
+    return rf_arg_write_image(path, img, NULL, 0, e, p, err, errsz) == RF_OK;
 }
 
 /* refray diff --stat (rf_diff_stat): exit 0 pass, 2 fail, 3 mismatch, 4 file error */
@@ -109,13 +138,12 @@ static int stat_test(const char *pa, const char *pb, const char *pva, const char
 {
     char err[1024];
     const char *outs[1] = {heatmap}, *ins[4] = {pa, pb, pva, pvb};
-    if (rf_outputs_check(outs, 1, ins, 4, err, sizeof err) != RF_OK) {
-        fprintf(stderr, "refray diff: %s\n", err);
-        return EXIT_USAGE;
-    }
+    int bad = rf_arg_outputs_check("refray diff", outs, 1, ins, 4);
+    if (bad)
+        return bad;
     RfImage im[4], pv = {0, 0, 0, NULL};
     const char *paths[4] = {pa, pb, pva, pvb};
-    int rc = EXIT_FILE, n = 0;
+    int rc = RF_EXIT_FILE, n = 0;
     for (; n < 4; n++)
         if (rf_exr_read(paths[n], &im[n], err, sizeof err) != RF_OK) {
             fprintf(stderr, "refray diff: %s\n", err);
@@ -125,7 +153,7 @@ static int stat_test(const char *pa, const char *pb, const char *pva, const char
     RfStatus st = rf_diff_stat(&im[0], &im[1], &im[2], &im[3], alpha, accept, &r, heatmap ? &pv : NULL, err, sizeof err);
     if (st != RF_OK) {
         fprintf(stderr, "refray diff: %s\n", err);
-        rc = st == RF_ERR_DOMAIN ? EXIT_MISMATCH : EXIT_FILE;
+        rc = st == RF_ERR_DOMAIN ? RF_EXIT_SIZE : RF_EXIT_FILE;
         goto done;
     }
     if (kv)
@@ -138,7 +166,7 @@ static int stat_test(const char *pa, const char *pb, const char *pva, const char
                "needed %.4f %%) at the Sidak level %.3g (alpha %g); smallest p %.3g at (%d, %d)\nverdict: %s\n",
                pa, pva, pb, pvb, r.accepted, r.pixels, 100.0 * (double)r.accepted / (double)r.pixels, 100.0 * accept,
                r.alpha_pixel, alpha, r.min_p, r.min_x, r.min_y, r.pass ? "PASS" : "FAIL");
-    rc = r.pass ? 0 : 2;
+    rc = r.pass ? RF_EXIT_OK : RF_EXIT_FAIL;
     if (heatmap) { /* -log10 p, white at p = 1e-6 */
         RfImage h;
         if (rf_image_alloc(&h, pv.width, pv.height, 3) == RF_OK) {
@@ -148,9 +176,9 @@ static int stat_test(const char *pa, const char *pb, const char *pva, const char
                 h.data[3 * i + 1] = (float)fmin(1.0, fmax(0.0, 3.0 * t - 1.0));
                 h.data[3 * i + 2] = (float)fmin(1.0, fmax(0.0, 3.0 * t - 2.0));
             }
-            if (!write_png(heatmap, &h, err, sizeof err)) {
+            if (!write_heatmap(heatmap, &h, err, sizeof err)) {
                 fprintf(stderr, "refray diff: %s\n", err);
-                rc = EXIT_FILE;
+                rc = RF_EXIT_FILE;
             }
             rf_image_free(&h);
         }
@@ -171,88 +199,65 @@ int rf_cmd_diff(int argc, char **argv)
     int set_warn = 0, set_mean = 0, stat = 0;
     const char *pva = NULL, *pvb = NULL;
     double alpha = 0.01, accept = 0.9975;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int ok = 1, shared, used;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "--heatmap") == 0 && v) {
-            heatmap = v, i++;
-        } else if (strcmp(a, "--depth-heatmap") == 0 && v) {
-            depth_heatmap = v, i++;
-        } else if (strcmp(a, "--depth-a") == 0 && v) {
-            pda = v, i++;
-        } else if (strcmp(a, "--depth-b") == 0 && v) {
-            pdb = v, i++;
-        } else if (strcmp(a, "--warn") == 0 && v) {
-            ok = rf_arg_nonneg(v, &o.warn), set_warn = 1, i++;
-        } else if (strcmp(a, "--warnpercent") == 0 && v) {
-            ok = rf_arg_nonneg(v, &o.warn_percent), i++;
-        } else if (strcmp(a, "--fail") == 0 && v) {
-            ok = rf_arg_nonneg(v, &o.fail), i++;
-        } else if (strcmp(a, "--failpercent") == 0 && v) {
-            ok = rf_arg_nonneg(v, &o.fail_percent), i++;
-        } else if (strcmp(a, "--fail-mean") == 0 && v) {
-            ok = rf_arg_nonneg(v, &o.fail_mean), set_mean = 1, i++;
-        } else if (strcmp(a, "--hardfail") == 0 && v) {
-            ok = rf_arg_nonneg(v, &o.hardfail), i++;
-        } else if (strcmp(a, "--depth-edge") == 0 && v) {
-            ok = rf_arg_nonneg(v, &o.depth_edge), i++;
-        } else if ((shared = rf_arg_shared(a, v, NULL, &popt, &used)) != 0) {
-            ok = shared > 0, i += used - 1;
-        } else if (strcmp(a, "--as-is") == 0) {
-            popt.encoding = RF_PNG_AS_IS;
-        } else if (strcmp(a, "--space") == 0 && v) {
-            i++;
+    RfOptParser p;
+    int key;
+    rf_opt_init(&p, &diff_cmd, argc, argv);
+    while ((key = rf_opt_next(&p)) != RF_OPT_DONE) {
+        const char *v = p.value;
+        int ok = 1;
+        switch (key) {
+        case RF_OPT_EXIT:
+            return p.exit_code;
+        case OPT_HEATMAP: heatmap = v; break;
+        case OPT_DEPTH_HEATMAP: depth_heatmap = v; break;
+        case OPT_DEPTH_A: pda = v; break;
+        case OPT_DEPTH_B: pdb = v; break;
+        case OPT_WARN: ok = rf_arg_nonneg(v, &o.warn), set_warn = 1; break;
+        case OPT_WARNPERCENT: ok = rf_arg_nonneg(v, &o.warn_percent); break;
+        case OPT_FAIL: ok = rf_arg_nonneg(v, &o.fail); break;
+        case OPT_FAILPERCENT: ok = rf_arg_nonneg(v, &o.fail_percent); break;
+        case OPT_FAIL_MEAN: ok = rf_arg_nonneg(v, &o.fail_mean), set_mean = 1; break;
+        case OPT_HARDFAIL: ok = rf_arg_nonneg(v, &o.hardfail); break;
+        case OPT_DEPTH_EDGE: ok = rf_arg_nonneg(v, &o.depth_edge); break;
+        case OPT_AS_IS: popt.encoding = RF_PNG_AS_IS; break;
+        case OPT_SPACE:
             space = strcmp(v, "linear") == 0 ? 0 : strcmp(v, "display") == 0 ? 1 : -2;
             ok = space >= 0;
-        } else if (strcmp(a, "--kv") == 0) {
-            kv = 1;
-        } else if (strcmp(a, "--stat") == 0) {
-            stat = 1;
-        } else if (strcmp(a, "--var-a") == 0 && v) {
-            pva = v, i++;
-        } else if (strcmp(a, "--var-b") == 0 && v) {
-            pvb = v, i++;
-        } else if (strcmp(a, "--alpha") == 0 && v) {
-            ok = rf_arg_nonneg(v, &alpha) && alpha > 0.0 && alpha < 1.0, i++;
-        } else if (strcmp(a, "--accept") == 0 && v) {
-            ok = rf_arg_nonneg(v, &accept) && accept <= 1.0, i++;
-        } else if (a[0] != '-' && !pa) {
-            pa = a;
-        } else if (a[0] != '-' && !pb) {
-            pb = a;
-        } else {
-            fprintf(stderr, "refray diff: unknown or incomplete option '%s' (see: refray diff --help)\n", a);
-            return EXIT_USAGE;
+            break;
+        case OPT_KV: kv = 1; break;
+        case OPT_STAT: stat = 1; break;
+        case OPT_VAR_A: pva = v; break;
+        case OPT_VAR_B: pvb = v; break;
+        case OPT_ALPHA: ok = rf_arg_nonneg(v, &alpha) && alpha > 0.0 && alpha < 1.0; break;
+        case OPT_ACCEPT: ok = rf_arg_nonneg(v, &accept) && accept <= 1.0; break;
+        default: ok = rf_arg_shared(key, v, NULL, &popt) > 0;
         }
-        if (!ok) {
-            fprintf(stderr, "refray diff: bad value for %s\n", a);
-            return EXIT_USAGE;
-        }
+        if (!ok)
+            return rf_opt_bad_value(&p);
     }
+    char **ops;
+    int n = rf_opt_operands(&p, &ops);
+    if (n < 2)
+        return rf_opt_usage_error(&diff_cmd, "%s", n == 0 ? "missing the images A and B" : "missing the reference image B");
+    if (n > 2)
+        return rf_opt_usage_error(&diff_cmd, "two images only: '%s' is a third", ops[2]);
+    pa = ops[0], pb = ops[1];
+    if ((heatmap && !rf_arg_image_format("refray diff", "--heatmap", heatmap, RF_IMAGE_PNG | RF_IMAGE_EXR)) ||
+        (depth_heatmap &&
+         !rf_arg_image_format("refray diff", "--depth-heatmap", depth_heatmap, RF_IMAGE_PNG | RF_IMAGE_EXR)))
+        return RF_EXIT_USAGE;
     if (stat || pva || pvb) {
-        if (!pa || !pb || !stat || !pva || !pvb) {
-            fprintf(stderr, "refray diff: --stat takes A, B, --var-a and --var-b\n");
-            return EXIT_USAGE;
-        }
+        if (!stat || !pva || !pvb)
+            return rf_opt_usage_error(&diff_cmd, "--stat takes A, B, --var-a and --var-b");
         return stat_test(pa, pb, pva, pvb, alpha, accept, heatmap, kv);
     }
-    if (!pa || !pb || (!pda) != (!pdb) || (depth_heatmap && !pda)) {
-        if (pa && pb)
-            fprintf(stderr, "refray diff: --depth-a and --depth-b go together (and --depth-heatmap needs them)\n");
-        else
-            usage(stderr);
-        return EXIT_USAGE;
-    }
+    if ((!pda) != (!pdb) || (depth_heatmap && !pda))
+        return rf_opt_usage_error(&diff_cmd, "--depth-a and --depth-b go together (and --depth-heatmap needs them)");
     { /* heatmaps: writable, and never one of the images compared */
-        char err[1024];
         const char *outs[2] = {heatmap, depth_heatmap}, *ins[4] = {pa, pb, pda, pdb};
-        if (rf_outputs_check(outs, 2, ins, 4, err, sizeof err) != RF_OK) {
-            fprintf(stderr, "refray diff: %s\n", err);
-            return EXIT_USAGE;
-        }
+        int bad = rf_arg_outputs_check("refray diff", outs, 2, ins, 4);
+        if (bad)
+            return bad;
     }
     if (space < 0)
         space = is_png(pa) || is_png(pb);
@@ -272,7 +277,7 @@ int rf_cmd_diff(int argc, char **argv)
         (pda && (rf_image_read(pda, popt, &da, err, sizeof err) != RF_OK ||
                  rf_image_read(pdb, popt, &db, err, sizeof err) != RF_OK))) {
         fprintf(stderr, "refray diff: %s\n", err);
-        rc = EXIT_FILE;
+        rc = RF_EXIT_FILE;
         goto done;
     }
     if (space == 1) {
@@ -283,14 +288,14 @@ int rf_cmd_diff(int argc, char **argv)
     unsigned char *mask = malloc((size_t)ia.width * ia.height + 1);
     if (!mask) {
         fprintf(stderr, "refray diff: out of memory\n");
-        rc = EXIT_FILE;
+        rc = RF_EXIT_FILE;
         goto done;
     }
     RfStatus st = rf_diff_images(&ia, &ib, pda ? &da : NULL, pdb ? &db : NULL, &o, &res, mask, err, sizeof err);
     if (st != RF_OK) {
         fprintf(stderr, "refray diff: %s\n", err);
         free(mask);
-        rc = st == RF_ERR_DOMAIN ? EXIT_MISMATCH : EXIT_FILE;
+        rc = st == RF_ERR_DOMAIN ? RF_EXIT_SIZE : RF_EXIT_FILE;
         goto done;
     }
     if (kv) {
@@ -314,16 +319,16 @@ int rf_cmd_diff(int argc, char **argv)
     printf(kv ? "verdict=%s\n" : "verdict: %s\n", rf_diff_verdict_name(res.verdict));
     rc = (int)res.verdict;
     if (heatmap) {
-        if (rf_diff_heatmap(&ia, &ib, res.has_depth ? mask : NULL, &heat) != RF_OK || !write_png(heatmap, &heat, err, sizeof err)) {
+        if (rf_diff_heatmap(&ia, &ib, res.has_depth ? mask : NULL, &heat) != RF_OK || !write_heatmap(heatmap, &heat, err, sizeof err)) {
             fprintf(stderr, "refray diff: %s\n", heat.data ? err : "cannot make the heatmap");
-            rc = EXIT_FILE;
+            rc = RF_EXIT_FILE;
         }
         rf_image_free(&heat);
     }
-    if (depth_heatmap && rc != EXIT_FILE) {
-        if (rf_diff_depth_heatmap(&da, &db, mask, &heat) != RF_OK || !write_png(depth_heatmap, &heat, err, sizeof err)) {
+    if (depth_heatmap && rc != RF_EXIT_FILE) {
+        if (rf_diff_depth_heatmap(&da, &db, mask, &heat) != RF_OK || !write_heatmap(depth_heatmap, &heat, err, sizeof err)) {
             fprintf(stderr, "refray diff: %s\n", heat.data ? err : "cannot make the depth heatmap");
-            rc = EXIT_FILE;
+            rc = RF_EXIT_FILE;
         }
         rf_image_free(&heat);
     }

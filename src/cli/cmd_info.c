@@ -4,6 +4,8 @@
 #include <string.h>
 
 #include "cli.h"
+#include "args.h"
+#include "exit_codes.h"
 #include "refray/render.h"
 #include "refray/scene.h"
 #include "refray/scene_io.h"
@@ -11,18 +13,25 @@
 /* Materials and lights listed one per line before "... and N more" (unless --all). */
 #define INFO_LIST_MAX 10
 
-static void usage(FILE *out)
-{
-    fprintf(out, "usage: refray info [--all] [--nff-fov centres|edges] SCENE\n\n"
-                 "Loads SCENE (.nff, .rf, .obj, optionally .gz) and prints its camera, render\n"
-                 "settings, primitive counts, the scene graph (objects, groups, instances,\n"
-                 "triangles before and after instancing), materials, lights, bounding box and\n"
-                 "the features it uses.\n"
-                 "  --all        list every material and light (default: the first %d)\n"
-                 "  --nff-fov    how NFF's `angle` is read: between the outermost pixel centres\n"
-                 "               (default, the NFF text) or between the image edges\n",
-                 INFO_LIST_MAX);
-}
+enum { OPT_ALL = RF_OPT_ID };
+
+static const RfOpt info_opts[] = {
+    {"all", OPT_ALL, NULL, "list every material and light (default: the first 10)", NULL},
+    RF_OPT_TABLE_END,
+};
+
+static const RfOpt *const info_tables[] = {info_opts, rf_opts_load, NULL};
+
+static const RfCommand info_cmd = {
+    "refray info",
+    "refray info [options] SCENE\n",
+    "Loads SCENE (.nff, .rf, .obj, optionally .gz) and prints its camera, render\n"
+    "settings, primitive counts, the scene graph (objects, groups, instances,\n"
+    "triangles before and after instancing), materials, lights, bounding box and\n"
+    "the features it uses.\n",
+    info_tables,
+    "exit: 0 ok, 4 the scene cannot be read, 5 usage (README: Exit codes)\n",
+};
 
 static void rgb(const char *label, RfRgb c)
 {
@@ -198,31 +207,29 @@ int rf_cmd_info(int argc, char **argv)
     const char *path = NULL;
     int all = 0;
     RfLoadOptions opt = rf_load_options_default();
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(argv[i], "--all") == 0) {
+    RfOptParser p;
+    int key;
+    rf_opt_init(&p, &info_cmd, argc, argv);
+    while ((key = rf_opt_next(&p)) != RF_OPT_DONE) {
+        if (key == RF_OPT_EXIT)
+            return p.exit_code;
+        if (key == OPT_ALL)
             all = 1;
-        } else if (strcmp(argv[i], "--nff-fov") == 0 && i + 1 < argc &&
-                   (strcmp(argv[i + 1], "centres") == 0 || strcmp(argv[i + 1], "edges") == 0)) {
-            opt.nff_fov = argv[++i][0] == 'e' ? RF_FOV_EDGES : RF_FOV_PIXEL_CENTRES;
-        } else if (argv[i][0] == '-' || path) {
-            usage(stderr);
-            return 2;
-        } else {
-            path = argv[i];
-        }
+        else if (rf_arg_shared(key, p.value, &opt, NULL) < 0)
+            return rf_opt_bad_value(&p);
     }
-    if (!path) {
-        usage(stderr);
-        return 2;
-    }
+    char **ops;
+    int n = rf_opt_operands(&p, &ops);
+    if (n == 0)
+        return rf_opt_usage_error(&info_cmd, "missing the scene file");
+    if (n > 1)
+        return rf_opt_usage_error(&info_cmd, "one scene only, '%s' is a second", ops[1]);
+    path = ops[0];
     RfScene s;
     char err[512];
     if (rf_scene_load(path, &opt, &s, err, sizeof err) != RF_OK) {
-        fprintf(stderr, "%s\n", err);
-        return 1;
+        rf_arg_report("refray info", err);
+        return RF_EXIT_FILE;
     }
     const RfRenderSettings *r = &s.render;
     printf("scene     %s (%s)\n", path,

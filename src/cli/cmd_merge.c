@@ -4,6 +4,7 @@
  * one message naming it. The output is written atomically, with the tiles' identity. */
 #include "cli.h"
 #include "args.h"
+#include "exit_codes.h"
 #include "farm.h"
 
 #include <stdlib.h>
@@ -11,13 +12,27 @@
 
 #include "refray/image.h"
 
-static void usage(FILE *out)
-{
-    fprintf(out, "usage: refray merge TILE.exr... -o OUT.exr [--png OUT.png] [--gamma G | --srgb] [--quiet]\n"
-                 "  TILE.exr   tiles written by refray render --crop or --tiles N --tile K, in any order\n"
-                 "  -o         the whole image (linear EXR), bit for bit the pixels of the tiles\n"
-                 "  --png      a display PNG as refray render writes it\n");
-}
+enum { OPT_PNG = RF_OPT_ID, OPT_QUIET };
+
+static const RfOpt merge_opts[] = {
+    {"output", 'o', "FILE", "the whole image, bit for bit the pixels of the tiles: .exr (linear) or .png", NULL},
+    {"png", OPT_PNG, "FILE.png", "a display PNG besides, as refray render writes it", NULL},
+    {"quiet", OPT_QUIET, NULL, "no summary line", NULL},
+    RF_OPT_TABLE_END,
+};
+
+static const RfOpt *const merge_tables[] = {merge_opts, rf_opts_png, NULL};
+
+static const RfCommand merge_cmd = {
+    "refray merge",
+    "refray merge [options] TILE.exr... -o OUT.exr\n",
+    "Puts the tiles of one render (refray render --crop, or --tiles N --tile K; any order)\n"
+    "together. Every tile must come from the same render and together they must cover the\n"
+    "image exactly once.\n",
+    merge_tables,
+    "exit: 0 ok, 4 a tile is missing, unreadable, foreign or overlapping, or the output cannot be\n"
+    "written, 5 usage (README: Exit codes)\n",
+};
 
 typedef struct {
     const char *path;
@@ -71,62 +86,50 @@ int rf_cmd_merge(int argc, char **argv)
 {
     const char *out = NULL, *png = NULL;
     RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
-    int quiet = 0, n = 0;
-    const char **paths = calloc((size_t)argc, sizeof *paths);
-    if (!paths)
-        return 1;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int shared, used;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            free(paths);
-            return 0;
-        } else if (strcmp(a, "-o") == 0 && v) {
-            out = v, i++;
-        } else if (strcmp(a, "--png") == 0 && v) {
-            png = v, i++;
-        } else if (strcmp(a, "--quiet") == 0) {
+    int quiet = 0, n = 0, key;
+    RfOptParser p;
+    rf_opt_init(&p, &merge_cmd, argc, argv);
+    while ((key = rf_opt_next(&p)) != RF_OPT_DONE) {
+        if (key == RF_OPT_EXIT)
+            return p.exit_code;
+        if (key == 'o')
+            out = p.value;
+        else if (key == OPT_PNG)
+            png = p.value;
+        else if (key == OPT_QUIET)
             quiet = 1;
-        } else if ((shared = rf_arg_shared(a, v, NULL, &popt, &used)) != 0) {
-            if (shared < 0) {
-                fprintf(stderr, "refray merge: bad value '%s' for %s\n", v ? v : "", a);
-                free(paths);
-                return 2;
-            }
-            i += used - 1;
-        } else if (a[0] != '-') {
-            paths[n++] = a;
-        } else {
-            fprintf(stderr, "refray merge: unknown or incomplete option '%s' (see: refray merge --help)\n", a);
-            free(paths);
-            return 2;
-        }
+        else if (rf_arg_shared(key, p.value, NULL, &popt) < 0)
+            return rf_opt_bad_value(&p);
     }
-    if (n == 0 || !out) {
-        usage(stderr);
-        free(paths);
-        return 2;
-    }
+    char **paths;
+    n = rf_opt_operands(&p, &paths);
+    if (n <= 0)
+        return rf_opt_usage_error(&merge_cmd, "missing the tiles");
+    if (!out)
+        return rf_opt_usage_error(&merge_cmd, "missing the output: -o OUT.exr");
+    if (!rf_arg_image_format("refray merge", "-o", out, RF_IMAGE_EXR | RF_IMAGE_PNG) ||
+        (png && !rf_arg_image_format("refray merge", "--png", png, RF_IMAGE_PNG)))
+        return RF_EXIT_USAGE;
     char err[1024];
     const char *outs[2] = {out, png};
-    if (rf_outputs_check(outs, 2, paths, n, err, sizeof err) != RF_OK) {
-        fprintf(stderr, "refray merge: %s\n", err);
-        free(paths);
-        return 2;
-    }
+    int bad = rf_arg_outputs_check("refray merge", outs, 2, (const char *const *)paths, n);
+    if (bad)
+        return bad;
     Tile *tiles = calloc((size_t)n, sizeof *tiles);
     char *expect[3] = {NULL, NULL, NULL};
     RfImage full = {0, 0, 0, NULL};
-    int rc = 1, w = 0, h = 0;
-    if (!tiles)
+    int rc = RF_EXIT_FILE, w = 0, h = 0; /* a tile missing, unreadable or foreign, or a failed write */
+    if (!tiles) {
+        rc = RF_EXIT_FAIL;
         goto done;
+    }
     for (int i = 0; i < n; i++) { /* headers first: nothing is decoded before the set is known good */
         RfExrWindow disp;
         tiles[i].path = paths[i];
         for (int j = 0; j < i; j++)
             if (rf_output_same(paths[i], paths[j])) {
                 fprintf(stderr, "refray merge: %s is given twice\n", paths[i]);
+                rc = RF_EXIT_USAGE;
                 goto done;
             }
         if (rf_exr_read_windows(paths[i], &tiles[i].data, &disp, err, sizeof err) != RF_OK) {
@@ -167,6 +170,7 @@ int rf_cmd_merge(int argc, char **argv)
     }
     if (rf_image_alloc(&full, w, h, 3) != RF_OK) {
         fprintf(stderr, "refray merge: %dx%d: out of memory\n", w, h);
+        rc = RF_EXIT_FAIL;
         goto done;
     }
     for (int i = 0; i < n; i++) {
@@ -199,7 +203,7 @@ int rf_cmd_merge(int argc, char **argv)
             fprintf(stderr, "refray merge: out of memory\n");
             goto done;
         }
-        if (rf_exr_write_opts(out, &full, attrs, 5, eopt, err, sizeof err) != RF_OK ||
+        if (rf_arg_write_image(out, &full, attrs, 5, eopt, popt, err, sizeof err) != RF_OK ||
             (png && rf_png_write(png, &full, popt, err, sizeof err) != RF_OK)) {
             fprintf(stderr, "refray merge: %s; nothing written\n", err);
             rf_write_batch_abort(batch);
@@ -218,6 +222,5 @@ done:
         free(expect[k]);
     rf_image_free(&full);
     free(tiles);
-    free(paths);
     return rc;
 }

@@ -2,6 +2,7 @@
 #include "cli.h"
 #include "args.h"
 #include "checkpoint.h"
+#include "exit_codes.h"
 #include "farm.h"
 
 #include <errno.h>
@@ -44,54 +45,61 @@ static void cpu_model(char *buf, size_t size)
 #define RF_COMPILER "unknown"
 #endif
 
-static void usage(FILE *out)
-{
-    fprintf(out,
-            "usage: refray render SCENE -o OUT.exr [--png OUT.png] [--width W] [--height H]\n"
-            "                     [--samples N] [--depth D] [--threads N] [--local] [--seed S]\n"
-            "                     [--gamma G | --srgb] [--nff-fov centres|edges] [--depth-out D.exr]\n"
-            "                     [--sampler uniform|random|stratified|sobol|adaptive]\n"
-            "                     [--adaptive-threshold T] [--adaptive-depth D]\n"
-            "                     [--filter box|gaussian|mitchell] [--filter-radius R]\n"
-            "                     [--aperture A --focus F] [--light-samples N]\n"
-            "                     [--kernel auto|general|PARTS] [--preview] [--quiet]\n"
-            "                     [--crop X0,Y0,X1,Y1 | --tiles N --tile K]\n"
-            "                     [--checkpoint FILE [--checkpoint-every S]] [--resume FILE]\n"
-            "                     [--variance VAR.exr]\n"
-            "  SCENE      an .nff, .rf or .obj scene (docs/scene-format.md)\n"
-            "  -o         linear OpenEXR output (float RGB, settings in the header)\n"
-            "  --png      display PNG: gamma %.1f encoded (the script's §1.1.2), or --srgb\n"
-            "  --local    primary rays and local Phong only (no shadows, reflection, refraction)\n"
-            "  --depth-out DEPTH.exr  linear eye-space depth of the primary hit through each pixel\n"
-            "             centre (distance along the view axis), +inf where the ray hits nothing\n"
-            "  --samples  per pixel (1: the pixel centre); placed by --sampler (default: the scene's,\n"
-            "             stratified) in the support of --filter (default box: the pixel square)\n"
-            "  --sampler  adaptive: §3.9 adaptive supersampling (a pixel that differs from a\n"
-            "             neighbour by more than the threshold, default 0.1, is split into 4, to\n"
-            "             the depth, default 2)\n"
-            "  --aperture --focus  §3.10 thin lens: its radius and the distance in focus\n"
-            "  --light-samples  shadow rays per area light and camera sample (default: the light's)\n"
-            "  --preview  a sample with a NaN, Inf or negative radiance becomes black and is counted;\n"
-            "             without it (a reference render) it fails the render, naming its pixel and path\n"
-            "  --kernel   the render kernel: auto (the one compiled for what the scene needs),\n"
-            "             general (every part) or a compiled one named as refray info names\n"
-            "             it (general-secondary-fresnel: without those parts); the same image\n"
-            "  --crop     render only pixels [X0, X1) x [Y0, Y1) of the image, each bit for bit as in the\n"
-            "             whole render; the EXR keeps its place (data and display window)\n"
-            "  --tiles --tile  tile K (from 0) of N: a grid of about sqrt(N) x sqrt(N) rectangles;\n"
-            "             refray merge puts the tiles together (a job array index maps to K)\n"
-            "  --checkpoint FILE  every S seconds (default 5) write the finished tiles to FILE, a\n"
-            "             partial EXR marked as such; SIGINT or SIGTERM then stop the render with FILE\n"
-            "             written (exit 130 or 143); removed when the render completes\n"
-            "  --variance VAR.exr  each pixel's variance of its mean (2+ box-filtered samples), for\n"
-            "             refray diff --stat\n"
-            "  --resume FILE  continue such a render (the same scene and settings), keeping its\n"
-            "             checkpoint in FILE; the result is the uninterrupted render's, bit for bit\n",
-            2.2);
-}
+enum {
+    OPT_PNG = RF_OPT_ID, OPT_DEPTH_OUT, OPT_VARIANCE, OPT_CROP, OPT_TILES, OPT_TILE, OPT_CHECKPOINT,
+    OPT_CHECKPOINT_EVERY, OPT_RESUME, OPT_QUIET
+};
 
+static const RfOpt render_opts[] = {
+    {"output", 'o', "FILE", "the image: .exr linear OpenEXR (float RGB, settings in the header) or .png", NULL},
+    {"png", OPT_PNG, "FILE.png", "a display PNG besides: gamma 2.2 encoded (the script's §1.1.2), or --srgb", NULL},
+    {"depth-out", OPT_DEPTH_OUT, "FILE.exr", "linear eye-space depth of the primary hit through each pixel centre",
+     NULL},
+    {"variance", OPT_VARIANCE, "FILE.exr", "each pixel's variance of its mean (2+ box-filtered samples)", NULL},
+    {"crop", OPT_CROP, "X0,Y0,X1,Y1", "render only pixels [X0, X1) x [Y0, Y1), each as in the whole render",
+     "X0,Y0,X1,Y1: four integers, 0 <= X0 < X1, 0 <= Y0 < Y1"},
+    {"tiles", OPT_TILES, "N", "with --tile: the image cut into N tiles (refray merge joins them)",
+     "an integer in [1, 65536]"},
+    {"tile", OPT_TILE, "K", "with --tiles: render tile K (from 0)", "an integer in [0, 65535]"},
+    {"checkpoint", OPT_CHECKPOINT, "FILE", "write the finished tiles to FILE every few seconds and on SIGINT/SIGTERM",
+     NULL},
+    {"checkpoint-every", OPT_CHECKPOINT_EVERY, "S", "seconds between checkpoints (default 5)",
+     "a number of seconds >= 0"},
+    {"resume", OPT_RESUME, "FILE", "continue an interrupted render from its checkpoint", NULL},
+    {"quiet", OPT_QUIET, NULL, "no progress bar and no statistics line", NULL},
+    RF_OPT_TABLE_END,
+};
+
+static const RfOpt *const render_tables[] = {render_opts, rf_opts_render, rf_opts_png, rf_opts_load, NULL};
+
+static const RfCommand render_cmd = {
+    "refray render",
+    "refray render [options] SCENE -o OUT.exr|OUT.png [--png OUT.png]\n",
+    "Ray traces SCENE (.nff, .rf or .obj, docs/scene-format.md, .gz too) to a linear OpenEXR and/or a\n"
+    "display PNG; the format of each output follows its name.\n",
+    render_tables,
+    "Samples are placed by --sampler (default: the scene's, stratified) in the support of --filter\n"
+    "(default box: the pixel square). --sampler adaptive is §3.9's adaptive supersampling.\n"
+    "Without --preview (a reference render) a NaN, Inf or negative radiance fails the render, naming\n"
+    "its pixel and path. --kernel general-secondary-fresnel names a kernel without those parts.\n"
+    "--crop keeps each pixel bit for bit as in the whole render and the EXR keeps its place (data\n"
+    "and display window); --tiles N --tile K is a grid of about sqrt(N) x sqrt(N) rectangles (a job\n"
+    "array index maps to K). --checkpoint FILE is a partial EXR marked as such; SIGINT or SIGTERM\n"
+    "stop the render with FILE written (exit 130 or 143); it is removed when the render completes.\n"
+    "--resume FILE continues such a render (the same scene and settings), bit for bit the\n"
+    "uninterrupted render's. --depth-out: distance along the view axis, +inf where nothing is hit.\n"
+    "--variance is what refray diff --stat takes.\n"
+    "exit: 0 ok, 2 the render failed (non-finite pixels), 4 a file cannot be read or written,\n"
+    "5 usage; 130/143 stopped after writing the checkpoint (README: Exit codes)\n",
+};
+
+/* The progress bar: redrawn at most PROGRESS_HZ times a second (a redraw per finished tile was
+ * ~600 a second, 108 KB of terminal output for a 3 s render); the 100 % state is always drawn
+ * and stays on its line. */
+#define PROGRESS_HZ 4
 typedef struct {
-    int tty;
+    int tty, drawn;
+    double last; /* when it was last drawn, seconds since start */
     struct timespec start;
 } Progress;
 
@@ -108,14 +116,14 @@ static void show_progress(void *ctx, int done, int total)
     if (!p->tty)
         return;
     double el = seconds_since(p->start), eta = done > 0 ? el * (total - done) / done : 0.0;
+    if (done < total && p->drawn && el - p->last < 1.0 / PROGRESS_HZ)
+        return;
+    p->drawn = 1, p->last = el;
     int width = 30, fill = (int)((double)width * done / total);
-    fprintf(stderr, "\r[%.*s%*s] %3d%%  %.1f s, ETA %.1f s ", fill, "##############################",
+    fprintf(stderr, "\r[%.*s%*s] %3d%%  %.1f s, ETA %.1f s \033[K", fill, "##############################",
             width - fill, "", 100 * done / total, el, eta);
-    if (done == total)
-        fputs("\r\033[K", stderr);
     fflush(stderr);
 }
-
 
 /* --depth-out: the comparator's silhouette mask needs the tracer's depth. One ray through each
  * pixel centre, from the hither plane as in rf_render; depth = t <dir, -w> (dir unit), the
@@ -144,96 +152,71 @@ static RfStatus primary_depth(const RfScene *scene, int width, int height, RfTil
     return st;
 }
 
-/* What an option takes, for the message on a bad value. */
-static const char *expected_value(const char *opt)
-{
-    static const struct { const char *opt, *what; } table[] = {
-        {"--width", "an integer in [1, 65536]"}, {"--height", "an integer in [1, 65536]"},
-        {"--samples", "an integer in [1, 1048576]"}, {"--depth", "an integer in [1, 1000]"},
-        {"--threads", "an integer in [1, 1024]"}, {"--seed", "an integer in [0, 2147483647]"},
-        {"--sampler", "uniform, random, stratified, sobol or adaptive"},
-        {"--adaptive-threshold", "a number >= 0"}, {"--adaptive-depth", "an integer in [0, 8]"},
-        {"--filter", "box, gaussian or mitchell"}, {"--filter-radius", "a number in (0, 16]"},
-        {"--aperture", "a number >= 0"}, {"--focus", "a number > 0"},
-        {"--light-samples", "an integer in [1, 65536]"}, {"--kernel", "auto, general or a name refray info prints"},
-        {"--gamma", "a number in (0, 10)"}, {"--nff-fov", "centres or edges"},
-        {"--crop", "X0,Y0,X1,Y1: four integers, 0 <= X0 < X1, 0 <= Y0 < Y1"},
-        {"--tiles", "an integer in [1, 65536]"}, {"--tile", "an integer in [0, 65535]"},
-        {"--checkpoint-every", "a number of seconds >= 0"},
-    };
-    for (size_t i = 0; i < sizeof table / sizeof table[0]; i++)
-        if (strcmp(opt, table[i].opt) == 0)
-            return table[i].what;
-    return "see refray render --help";
-}
-
 int rf_cmd_render(int argc, char **argv)
 {
-    const char *scene_path = NULL, *exr = NULL, *png = NULL, *depth_out = NULL;
+    const char *scene_path = NULL, *exr = NULL /* -o: .exr or .png */, *png = NULL, *depth_out = NULL;
     const char *checkpoint = NULL, *resume = NULL, *variance = NULL;
     int tiles = 0, tile = -1, have_crop = 0;
     double checkpoint_every = 5.0;
     RfRenderOptions opt = rf_render_options_default();
     RfLoadOptions lopt = rf_load_options_default();
     RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
-    int quiet = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int ok = 1, shared, used;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "-o") == 0 && v) {
-            exr = v, i++;
-        } else if (strcmp(a, "--depth-out") == 0 && v) {
-            depth_out = v, i++;
-        } else if (strcmp(a, "--png") == 0 && v) {
-            png = v, i++;
-        } else if ((shared = rf_arg_render(a, v, &opt, &used)) != 0) {
-            ok = shared > 0, i += used - 1;
-        } else if ((shared = rf_arg_shared(a, v, &lopt, &popt, &used)) != 0) {
-            ok = shared > 0, i += used - 1;
-        } else if (strcmp(a, "--crop") == 0 && v) {
+    int quiet = 0, key;
+    RfOptParser p;
+    rf_opt_init(&p, &render_cmd, argc, argv);
+    while ((key = rf_opt_next(&p)) != RF_OPT_DONE) {
+        const char *v = p.value;
+        int ok = 1, shared;
+        if (key == RF_OPT_EXIT)
+            return p.exit_code;
+        else if (key == 'o')
+            exr = v;
+        else if (key == OPT_DEPTH_OUT)
+            depth_out = v;
+        else if (key == OPT_PNG)
+            png = v;
+        else if ((shared = rf_arg_render(key, v, &opt)) != 0 || (shared = rf_arg_shared(key, v, &lopt, &popt)) != 0)
+            ok = shared > 0;
+        else if (key == OPT_CROP) {
             int n = -1;
             ok = sscanf(v, "%d,%d,%d,%d%n", &opt.crop.x0, &opt.crop.y0, &opt.crop.x1, &opt.crop.y1, &n) == 4 &&
                  n == (int)strlen(v) && opt.crop.x0 >= 0 && opt.crop.y0 >= 0 && opt.crop.x0 < opt.crop.x1 &&
                  opt.crop.y0 < opt.crop.y1;
-            have_crop = 1, i++;
-        } else if (strcmp(a, "--tiles") == 0 && v) {
-            ok = rf_arg_int(v, 1, 65536, &tiles), i++;
-        } else if (strcmp(a, "--tile") == 0 && v) {
-            ok = rf_arg_int(v, 0, 65535, &tile), i++;
-        } else if (strcmp(a, "--variance") == 0 && v) {
-            variance = v, i++;
-        } else if (strcmp(a, "--checkpoint") == 0 && v) {
-            checkpoint = v, i++;
-        } else if (strcmp(a, "--checkpoint-every") == 0 && v) {
-            ok = rf_arg_nonneg(v, &checkpoint_every), i++;
-        } else if (strcmp(a, "--resume") == 0 && v) {
-            resume = v, i++;
-        } else if (strcmp(a, "--quiet") == 0) {
+            have_crop = 1;
+        } else if (key == OPT_TILES)
+            ok = rf_arg_int(v, 1, 65536, &tiles);
+        else if (key == OPT_TILE)
+            ok = rf_arg_int(v, 0, 65535, &tile);
+        else if (key == OPT_VARIANCE)
+            variance = v;
+        else if (key == OPT_CHECKPOINT)
+            checkpoint = v;
+        else if (key == OPT_CHECKPOINT_EVERY)
+            ok = rf_arg_nonneg(v, &checkpoint_every);
+        else if (key == OPT_RESUME)
+            resume = v;
+        else if (key == OPT_QUIET)
             quiet = 1;
-        } else if (a[0] != '-' && !scene_path) {
-            scene_path = a;
-        } else {
-            fprintf(stderr, "refray render: unknown or incomplete option '%s' (see: refray render --help)\n", a);
-            return 2;
-        }
-        if (!ok) {
-            fprintf(stderr, "refray render: bad value '%s' for %s: %s\n", v ? v : "", a, expected_value(a));
-            return 2;
-        }
+        if (!ok)
+            return rf_opt_bad_value(&p);
     }
-    if (!scene_path || (!exr && !png)) {
-        usage(stderr);
-        return 2;
-    }
-    if ((tiles > 0) != (tile >= 0) || (have_crop && tiles > 0)) {
-        fprintf(stderr, "refray render: %s\n", have_crop && tiles > 0 ? "--crop and --tiles exclude each other"
-                                                                        : "--tiles N and --tile K come together");
-        return 2;
-    }
+    char **operands;
+    int n_operands = rf_opt_operands(&p, &operands);
+    if (n_operands == 0)
+        return rf_opt_usage_error(&render_cmd, "missing the scene file");
+    if (n_operands > 1)
+        return rf_opt_usage_error(&render_cmd, "one scene only, '%s' is a second", operands[1]);
+    scene_path = operands[0];
+    if (!exr && !png)
+        return rf_opt_usage_error(&render_cmd, "missing the output: -o OUT.exr, -o OUT.png or --png OUT.png");
+    if ((exr && !rf_arg_image_format("refray render", "-o", exr, RF_IMAGE_EXR | RF_IMAGE_PNG)) ||
+        (png && !rf_arg_image_format("refray render", "--png", png, RF_IMAGE_PNG)) ||
+        (depth_out && !rf_arg_image_format("refray render", "--depth-out", depth_out, RF_IMAGE_EXR)) ||
+        (variance && !rf_arg_image_format("refray render", "--variance", variance, RF_IMAGE_EXR)))
+        return RF_EXIT_USAGE;
+    if ((tiles > 0) != (tile >= 0) || (have_crop && tiles > 0))
+        return rf_opt_usage_error(&render_cmd, "%s", have_crop && tiles > 0 ? "--crop and --tiles exclude each other"
+                                                                           : "--tiles N and --tile K come together");
     if (resume && !checkpoint)
         checkpoint = resume; /* a resumed render keeps its checkpoint where it was */
     char err[1024];
@@ -243,20 +226,19 @@ int rf_cmd_render(int argc, char **argv)
         const char *ins[2] = {scene_path, resume && !rf_output_same(resume, checkpoint) ? resume : NULL};
         if (resume && access(resume, R_OK) != 0) {
             fprintf(stderr, "refray render: --resume %s: %s\n", resume, strerror(errno));
-            return 2;
+            return RF_EXIT_FILE;
         }
-        if (rf_outputs_check(outs, 5, ins, ins[1] ? 2 : 1, err, sizeof err) != RF_OK) {
-            fprintf(stderr, "refray render: %s\n", err);
-            return 2;
-        }
+        int bad = rf_arg_outputs_check("refray render", outs, 5, ins, ins[1] ? 2 : 1);
+        if (bad)
+            return bad;
     }
 
     rf_scene_init(&scene);
     struct timespec load_start;
     clock_gettime(CLOCK_MONOTONIC, &load_start);
     if (rf_scene_load(scene_path, &lopt, &scene, err, sizeof err) != RF_OK) {
-        fprintf(stderr, "%s\n", err);
-        return 1;
+        rf_arg_report("refray render", err);
+        return RF_EXIT_FILE;
     }
     {
         int w = opt.width > 0 ? opt.width : scene.render.width;
@@ -265,7 +247,7 @@ int rf_cmd_render(int argc, char **argv)
             fprintf(stderr, "refray render: %d x %d pixels is more than the %zu an image may have\n", w,
                     h, (size_t)RF_IMAGE_MAX_PIXELS);
             rf_scene_free(&scene);
-            return 2;
+            return RF_EXIT_USAGE;
         }
     }
     double load_secs = seconds_since(load_start);
@@ -274,14 +256,14 @@ int rf_cmd_render(int argc, char **argv)
     if (tiles > 0 && !rf_farm_tile_rect(tiles, tile, full_w, full_h, &opt.crop, err, sizeof err)) {
         fprintf(stderr, "refray render: %s\n", err);
         rf_scene_free(&scene);
-        return 2;
+        return RF_EXIT_USAGE;
     }
     int cropped = have_crop || tiles > 0;
     if (cropped && (opt.crop.x1 > full_w || opt.crop.y1 > full_h)) {
         fprintf(stderr, "refray render: --crop %d,%d,%d,%d is not inside the %dx%d image\n", opt.crop.x0, opt.crop.y0,
                 opt.crop.x1, opt.crop.y1, full_w, full_h);
         rf_scene_free(&scene);
-        return 2;
+        return RF_EXIT_USAGE;
     }
     RfTile crop = cropped ? opt.crop : (RfTile){0, 0, full_w, full_h, 0};
     /* what the pixels are made from, for the header: tiles and checkpoints must agree on it */
@@ -312,21 +294,20 @@ int rf_cmd_render(int argc, char **argv)
         if (!ckpt) {
             fprintf(stderr, "refray render: out of memory\n");
             rf_scene_free(&scene);
-            return 1;
+            return RF_EXIT_FAIL;
         }
         if (resume && !rf_checkpoint_resume(ckpt, resume, &opt.skip, &opt.resume_from, err, sizeof err)) {
             fprintf(stderr, "refray render: --resume %s\n", err);
             rf_checkpoint_free(ckpt);
             rf_scene_free(&scene);
-            return 1;
+            return RF_EXIT_FILE;
         }
         opt.tile_done = rf_checkpoint_tile_done;
         opt.tile_done_ctx = ckpt;
         opt.cancel = &cancel;
         watch = rf_signal_watch_start(&cancel); /* before rf_render starts its threads */
     }
-    Progress prog;
-    prog.tty = !quiet && isatty(2);
+    Progress prog = {!quiet && isatty(2), 0, 0.0, {0, 0}};
     clock_gettime(CLOCK_MONOTONIC, &prog.start);
     opt.progress = show_progress;
     opt.progress_ctx = &prog;
@@ -335,6 +316,8 @@ int rf_cmd_render(int argc, char **argv)
     opt.variance = variance ? &var : NULL;
     RfStatus rs = rf_render(&scene, &opt, &img, &st);
     int caught = rf_signal_watch_stop(watch);
+    if (prog.drawn)
+        fputc('\n', stderr); /* the bar's last state stays */
     int focus_missing = !isnan(opt.aperture) && opt.aperture > 0.0 && isnan(opt.focus) && !(scene.camera.focus > 0.0);
     double secs = seconds_since(prog.start);
     RfImage depth = {0, 0, 0, NULL};
@@ -358,7 +341,7 @@ int rf_cmd_render(int argc, char **argv)
         fprintf(stderr, "refray render: %s: depth: %s\n", scene_path, rf_status_str(ds));
         rf_image_free(&img);
         rf_image_free(&depth);
-        return 1;
+        return RF_EXIT_FAIL;
     }
     if (st.invalid.found) { /* the first NaN, Inf or negative radiance, with its path */
         char where[64];
@@ -374,7 +357,7 @@ int rf_cmd_render(int argc, char **argv)
     }
     if (rs != RF_OK) {
         if (rs == RF_ERR_NUMERIC)
-            return 1;
+            return RF_EXIT_FAIL;
         if (rs == RF_ERR_DOMAIN && focus_missing)
             fprintf(stderr, "refray render: %s: --aperture needs --focus (the scene's camera has none)\n", scene_path);
         else if (rs == RF_ERR_DOMAIN && variance && (st.samples < 2 || st.adaptive || st.filter.kind != RF_FILTER_BOX ||
@@ -386,7 +369,7 @@ int rf_cmd_render(int argc, char **argv)
                     scene_path, rf_kernel_name(opt.kernel, (char[256]){0}, 256));
         else
             fprintf(stderr, "refray render: %s: %s\n", scene_path, rf_status_str(rs));
-        return 1;
+        return rs == RF_ERR_DOMAIN ? RF_EXIT_USAGE : RF_EXIT_FAIL; /* options that do not go together */
     }
     int rc = 0;
     RfWriteBatch *batch = rf_write_batch_new(); /* the outputs are committed together, or none */
@@ -395,7 +378,7 @@ int rf_cmd_render(int argc, char **argv)
     popt.batch = batch;
     if (!batch) {
         fprintf(stderr, "refray render: out of memory\n");
-        rc = 1;
+        rc = RF_EXIT_FAIL;
     }
     if (exr && !rc) {
         char timing[64], threads[32], cpu[256], load_t[32], build_t[32], trace_t[32], kernel[256];
@@ -412,26 +395,27 @@ int rf_cmd_render(int argc, char **argv)
             {"refray:threads", threads}, {"refray:compiler", RF_COMPILER},
             {"refray:flags", RF_BUILD_FLAGS}, {"refray:cpu", cpu},
         };
-        if (rf_exr_write_opts(exr, &img, attrs, (int)(sizeof attrs / sizeof attrs[0]), eopt, err, sizeof err) != RF_OK) {
+        if (rf_arg_write_image(exr, &img, attrs, (int)(sizeof attrs / sizeof attrs[0]), eopt, popt, err, sizeof err) !=
+            RF_OK) {
             fprintf(stderr, "refray render: %s\n", err);
-            rc = 1;
+            rc = RF_EXIT_FILE;
         }
     }
     if (png && !rc && rf_png_write(png, &img, popt, err, sizeof err) != RF_OK) {
         fprintf(stderr, "refray render: %s\n", err);
-        rc = 1;
+        rc = RF_EXIT_FILE;
     }
     if (variance && !rc) {
         RfImageAttr vattrs[5] = {identity[0], identity[1], identity[2], identity[3],
                                  {"refray:variance", "per channel, the variance of each pixel's mean: s^2 / n"}};
         if (rf_exr_write_opts(variance, &var, vattrs, 5, eopt, err, sizeof err) != RF_OK) {
             fprintf(stderr, "refray render: %s\n", err);
-            rc = 1;
+            rc = RF_EXIT_FILE;
         }
     }
     if (depth_out && !rc && rf_exr_write_opts(depth_out, &depth, identity, 4, eopt, err, sizeof err) != RF_OK) {
         fprintf(stderr, "refray render: %s\n", err);
-        rc = 1;
+        rc = RF_EXIT_FILE;
     }
     if (rc) {
         rf_write_batch_abort(batch);
@@ -439,7 +423,7 @@ int rf_cmd_render(int argc, char **argv)
             fprintf(stderr, "refray render: nothing written\n");
     } else if (rf_write_batch_commit(batch, err, sizeof err) != RF_OK) {
         fprintf(stderr, "refray render: %s\n", err);
-        rc = 1;
+        rc = RF_EXIT_FILE;
     } else if (checkpoint && unlink(checkpoint) != 0 && errno != ENOENT) {
         fprintf(stderr, "refray render: warning: cannot remove the checkpoint %s: %s\n", checkpoint, strerror(errno));
     }

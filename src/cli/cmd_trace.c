@@ -4,6 +4,7 @@
  * the pixel, bit for bit. A readable tree, or JSON (--json). */
 #include "cli.h"
 #include "args.h"
+#include "exit_codes.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -11,18 +12,28 @@
 #include "refray/render.h"
 #include "refray/scene_io.h"
 
-static void usage(FILE *out)
-{
-    fprintf(out, "usage: refray trace SCENE X Y [--json] [render options: --width W --height H --samples N\n"
-                 "                   --depth D --local --seed S --sampler NAME --filter NAME ...]\n"
-                 "  Every ray of pixel (X, Y) (0, 0 at the top left), as the renderer computes it with the\n"
-                 "  same options as refray render: each camera sample's primary ray (§3.4), each hit\n"
-                 "  (primitive, t, point, geometric and shading normal), each light's L, its intensity\n"
-                 "  at the point, the shadow ray's verdict and the Phong terms per channel (§3.6.2),\n"
-                 "  each mirror or refracted ray with its Snell and Fresnel numbers and weight (§3.8),\n"
-                 "  the colour every ray returns, and the pixel's value as refray render writes it.\n"
-                 "  --json  the same as one JSON object: {\"scene\", \"pixel\", \"events\": [...]}\n");
-}
+enum { OPT_JSON = RF_OPT_ID };
+
+static const RfOpt trace_opts[] = {
+    {"json", OPT_JSON, NULL, "the same as one JSON object: {\"scene\", \"settings\", \"pixel\", \"events\": [...]}",
+     NULL},
+    RF_OPT_TABLE_END,
+};
+
+static const RfOpt *const trace_tables[] = {trace_opts, rf_opts_render, rf_opts_png, rf_opts_load, NULL};
+
+static const RfCommand trace_cmd = {
+    "refray trace",
+    "refray trace [options] SCENE X Y\n",
+    "Every ray of pixel (X, Y) (0, 0 at the top left), as the renderer computes it with the\n"
+    "same options as refray render: each camera sample's primary ray (§3.4), each hit\n"
+    "(primitive, t, point, geometric and shading normal), each light's L, its intensity\n"
+    "at the point, the shadow ray's verdict and the Phong terms per channel (§3.6.2),\n"
+    "each mirror or refracted ray with its Snell and Fresnel numbers and weight (§3.8),\n"
+    "the colour every ray returns, and the pixel's value as refray render writes it.\n",
+    trace_tables,
+    "exit: 0 ok, 2 the render failed, 4 the scene cannot be read, 5 usage (README: Exit codes)\n",
+};
 
 typedef struct {
     const RfScene *scene;
@@ -212,52 +223,49 @@ static void on_event(void *ctx, const RfTraceEvent *e)
 int rf_cmd_trace(int argc, char **argv)
 {
     const char *scene_path = NULL;
-    int xy[2] = {-1, -1}, nxy = 0, json = 0;
+    int xy[2] = {-1, -1}, json = 0;
     RfRenderOptions opt = rf_render_options_default();
     RfLoadOptions lopt = rf_load_options_default();
     RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int r, used;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "--json") == 0) {
+    RfOptParser op;
+    int key;
+    rf_opt_init(&op, &trace_cmd, argc, argv);
+    while ((key = rf_opt_next(&op)) != RF_OPT_DONE) {
+        int r = 1;
+        if (key == RF_OPT_EXIT)
+            return op.exit_code;
+        if (key == OPT_JSON)
             json = 1;
-        } else if ((r = rf_arg_render(a, v, &opt, &used)) != 0 || (r = rf_arg_shared(a, v, &lopt, &popt, &used)) != 0) {
-            if (r < 0) {
-                fprintf(stderr, "refray trace: bad or missing value for %s (see: refray render --help)\n", a);
-                return 2;
-            }
-            i += used - 1;
-        } else if (a[0] != '-' && !scene_path) {
-            scene_path = a;
-        } else if (a[0] != '-' && nxy < 2) {
-            if (!rf_arg_int(a, 0, 65535, &xy[nxy])) {
-                fprintf(stderr, "refray trace: bad pixel coordinate '%s': an integer in [0, 65535]\n", a);
-                return 2;
-            }
-            nxy++;
-        } else {
-            fprintf(stderr, "refray trace: unknown or incomplete option '%s' (see: refray trace --help)\n", a);
-            return 2;
+        else if ((r = rf_arg_render(key, op.value, &opt)) == 0)
+            r = rf_arg_shared(key, op.value, &lopt, &popt);
+        if (r < 0)
+            return rf_opt_bad_value(&op);
+    }
+    char **ops;
+    int n = rf_opt_operands(&op, &ops);
+    if (n == 0)
+        return rf_opt_usage_error(&trace_cmd, "missing the scene file and the pixel X Y");
+    if (n < 3)
+        return rf_opt_usage_error(&trace_cmd, "missing the pixel's %s", n == 1 ? "X and Y" : "Y");
+    if (n > 3)
+        return rf_opt_usage_error(&trace_cmd, "one pixel only: '%s' is one word too many", ops[3]);
+    scene_path = ops[0];
+    for (int k = 0; k < 2; k++)
+        if (!rf_arg_int(ops[1 + k], 0, 65535, &xy[k])) {
+            fprintf(stderr, "refray trace: bad pixel coordinate '%s': an integer in [0, 65535]\n", ops[1 + k]);
+            return RF_EXIT_USAGE;
         }
-    }
-    if (!scene_path || nxy != 2) {
-        usage(stderr);
-        return 2;
-    }
     char err[1024];
     RfScene scene;
     if (rf_scene_load(scene_path, &lopt, &scene, err, sizeof err) != RF_OK) {
-        fprintf(stderr, "%s\n", err);
-        return 1;
+        rf_arg_report("refray trace", err);
+        return RF_EXIT_FILE;
     }
     int w = opt.width > 0 ? opt.width : scene.render.width, h = opt.height > 0 ? opt.height : scene.render.height;
     if (xy[0] >= w || xy[1] >= h) {
         fprintf(stderr, "refray trace: pixel (%d, %d) is not in the %dx%d image\n", xy[0], xy[1], w, h);
         rf_scene_free(&scene);
-        return 2;
+        return RF_EXIT_USAGE;
     }
     Printer p = {&scene, json, 1};
     char settings[512];
@@ -284,7 +292,7 @@ int rf_cmd_trace(int argc, char **argv)
     rf_scene_free(&scene);
     if (rs != RF_OK) {
         fprintf(stderr, "refray trace: %s: %s\n", scene_path, rf_status_str(rs));
-        return 1;
+        return rs == RF_ERR_DOMAIN ? RF_EXIT_USAGE : RF_EXIT_FAIL;
     }
     rf_image_free(&img);
     return 0;

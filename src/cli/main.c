@@ -4,6 +4,8 @@
 #include <string.h>
 
 #include "cli.h"
+#include "exit_codes.h"
+#include "opt.h"
 #include "refray/version.h"
 
 typedef struct {
@@ -39,21 +41,30 @@ int main(int argc, char **argv)
     /* a file-size limit fails the write (EFBIG), which cleans up, instead of killing the process
      * with a temporary file left behind */
     signal(SIGXFSZ, SIG_IGN);
+    enum { N = sizeof commands / sizeof commands[0] };
     if (argc < 2) {
         usage(stderr);
-        return 2;
+        return RF_EXIT_USAGE;
     }
-    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "help") == 0) {
+    const char *a = argv[1];
+    if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0 || strcmp(a, "help") == 0) {
         usage(stdout);
-        return 0;
+        return RF_EXIT_OK;
     }
-    if (strcmp(argv[1], "--version") == 0) {
+    if (strcmp(a, "--version") == 0 || strcmp(a, "-V") == 0) {
         printf("refray %s\n", RF_VERSION);
-        return 0;
+        return RF_EXIT_OK;
     }
-    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-        if (strcmp(argv[1], commands[i].name) == 0)
+    const char *names[N];
+    for (size_t i = 0; i < N; i++) {
+        names[i] = commands[i].name;
+        if (strcmp(a, commands[i].name) == 0)
             return commands[i].run(argc - 1, argv + 1);
-    fprintf(stderr, "refray: unknown command '%s' (see: refray --help)\n", argv[1]);
-    return 2;
+    }
+    int s = a[0] == '-' ? -1 : rf_suggest(a, names, N);
+    fprintf(stderr, "refray: unknown %s '%s'", a[0] == '-' ? "option" : "command", a);
+    if (s >= 0)
+        fprintf(stderr, "; did you mean '%s'?", names[s]);
+    fprintf(stderr, " (see: refray --help)\n");
+    return RF_EXIT_USAGE;
 }

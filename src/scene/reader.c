@@ -89,13 +89,13 @@ static RfStatus read_file(const char *path, int gz, char **text, size_t *len, ch
 {
     struct stat sb;
     if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
-        snprintf(err, errsz, "%s:1:1: not a regular file (a directory, device or pipe)", path);
+        snprintf(err, errsz, "%s: not a regular file (a directory, device or pipe)", path);
         return RF_ERR_IO;
     }
     gzFile f = gz ? gzopen(path, "rb") : NULL;
     FILE *pf = gz ? NULL : fopen(path, "rb");
     if (!f && !pf) {
-        snprintf(err, errsz, "%s:1:1: cannot open: %s", path, strerror(errno ? errno : ENOENT));
+        snprintf(err, errsz, "cannot open %s: %s", path, strerror(errno ? errno : ENOENT));
         return RF_ERR_IO;
     }
     size_t cap = 1 << 16, n = 0;
@@ -148,10 +148,10 @@ static RfStatus read_file(const char *path, int gz, char **text, size_t *len, ch
     if (bad) {
         free(buf);
         if (bad == 3)
-            snprintf(err, errsz, "%s:1:1: larger than %d MiB%s: refused", path, RF_SCENE_MAX_FILE_BYTES >> 20,
+            snprintf(err, errsz, "%s: larger than %d MiB%s: refused", path, RF_SCENE_MAX_FILE_BYTES >> 20,
                      gz ? " decompressed" : "");
         else
-            snprintf(err, errsz, "%s:1:1: %s%s", path,
+            snprintf(err, errsz, "%s: %s%s", path,
                      bad == 1 ? "out of memory" : gz ? "cannot decompress (corrupt gzip data)" : "cannot read: ",
                      bad == 2 && !gz ? strerror(read_errno ? read_errno : EIO) : "");
         return bad == 1 ? RF_ERR_NOMEM : RF_ERR_IO;

@@ -45,7 +45,7 @@ RfStatus rf__reader_default_material(RfLexer *lx, RfScene *scene, const RfToken 
 RfStatus rf__reader_finish(RfLexer *lx, RfScene *scene, RfStatus st);
 
 /* A whole file (a trailing .gz decompressed) into a malloc'd buffer; on failure err gets
- * "path:1:1: cannot open: ..." (reader.c). */
+ * "cannot open path: why" or "path: why", no line and column (there is no line to point at). */
 RfStatus rf__reader_read_file(const char *path, char **text, size_t *len, char *err, size_t errsz);
 /* Do the first n bytes of s end with suffix? */
 int rf__ends_with(const char *s, size_t n, const char *suffix);
