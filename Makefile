@@ -66,7 +66,7 @@ VERIFY := $(BUILD)/refray-verify
 VIEW := $(BUILD)/refray-view
 GLFW_LIBS = $(shell pkg-config --libs glfw3 2>/dev/null || echo -lglfw)
 
-.PHONY: all test demo bench bench-run install clean report stress mutate FORCE
+.PHONY: all test demo bench bench-run install clean report crosscheck stress mutate FORCE
 all: $(LIB) $(BIN) $(RASTER) $(VERIFY) $(VIEW)
 
 # Dependencies: checked (and installed) once per build folder, then the flags are cached.
@@ -157,6 +157,14 @@ REPORT_SIZE ?= 512
 REPORT_DIR ?= report
 report: $(BIN) $(RASTER)
 	@sh compare/report.sh $(BIN) $(RASTER) $(REPORT_DIR) $(REPORT_SIZE)
+
+# full ray-traced images against Mitsuba 3 and POV-Ray (issue 16, docs/crosscheck.md): the scenes
+# of scenes/crosscheck/ exported by `refray export`, diffed (z-tests against Mitsuba, half-float
+# bounds against POV-Ray); writes $(REPORT_DIR)/crosscheck/index.html. A renderer that is missing
+# is skipped and named; CROSSCHECK_INSTALL=1 pip-installs Mitsuba first.
+CROSSCHECK_SAMPLES ?= 1024
+crosscheck: $(BIN)
+	@python3 tools/crosscheck.py --refray $(BIN) --out $(REPORT_DIR)/crosscheck --samples $(CROSSCHECK_SAMPLES) $(if $(CROSSCHECK_INSTALL),--install)
 
 demo: $(BIN)
 	@sh tools/demo.sh $(BIN)

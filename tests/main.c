@@ -31,6 +31,7 @@ extern const RfTest rf_tests_sampling[];
 extern const RfTest rf_tests_bench[];
 extern const RfTest rf_tests_fuzz_regress[];
 extern const RfTest rf_tests_povray[];
+extern const RfTest rf_tests_export[];
 extern const RfTest rf_tests_farm[];
 extern const RfTest rf_tests_view[];
 extern const RfTest rf_tests_trace[];
@@ -51,6 +52,7 @@ static const RfTest *const suites[] = {
     rf_tests_robust,
     rf_tests_fuzz_regress,
     rf_tests_povray,
+    rf_tests_export,
     rf_tests_farm,
     rf_tests_view,
     rf_tests_trace,

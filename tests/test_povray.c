@@ -1,8 +1,10 @@
 /* Full renders checked by an independent renderer (issue 13): POV-Ray 3.7 renders the same
  * scenes — whitted from scenes/bench/whitted.pov (SCENES.md's own translation), and the SPD
- * balls, rings, tetra and tree through tools/nff2pov.py, which writes them from the NFF text
- * with refray's NFF conventions (docs/scene-format.md). The goldens only guard against change;
- * this guards mirror, glass, shadows, Phong highlights and the NFF reading against being wrong.
+ * balls, rings, tetra and tree and the crosscheck scenes through `refray export --pov`, which
+ * writes them with refray's conventions (docs/crosscheck.md; it replaced tools/nff2pov.py, whose
+ * conventions it ports). The goldens only guard against change; this guards mirror, glass,
+ * shadows, Phong highlights, spot and directional lights and the camera (the asymmetric
+ * crosscheck/diffuse: a mirrored, left-handed camera would fail it) against being wrong.
  *
  * POV-Ray writes EXR as half floats (relative rounding 2^-11), so every scene must agree to
  * within half-float rounding everywhere: max |difference| <= 6e-4 (values up to ~1.2), mean
@@ -10,8 +12,8 @@
  * cut-off is off (adc_bailout 0; its default 1/255 alone makes whitted differ by 4e-3 inside
  * the glass sphere).
  *
- * Runs when povray and python3 are installed; CI sets RF_REQUIRE_POVRAY=1, so there the test
- * fails rather than skips without them. */
+ * Runs when povray is installed; CI sets RF_REQUIRE_POVRAY=1, so there the test fails rather
+ * than skips without it. */
 #include "rf_test.h"
 
 #include <stdlib.h>
@@ -20,27 +22,32 @@
 typedef struct {
     const char *name;
     const char *refray_args; /* the scene and its settings for `refray render` */
-    const char *pov_setup;   /* shell: writes $d/scene.pov */
+    const char *pov_setup;   /* shell: writes $d/scene.pov ($RF is refray) */
     int w, h;
     double max_abs, mean_abs, pct_255;
 } PovCase;
 
 static void t_povray_full_renders(void)
 {
-    if (!rf_test_have("povray") || !rf_test_have("python3")) {
+    if (!rf_test_have("povray")) {
         if (getenv("RF_REQUIRE_POVRAY")) {
-            rf_test_fail(__FILE__, __LINE__, "povray or python3 is missing (RF_REQUIRE_POVRAY is set)");
+            rf_test_fail(__FILE__, __LINE__, "povray is missing (RF_REQUIRE_POVRAY is set)");
         } else {
-            fprintf(stderr, "  skipped: povray or python3 is not installed (apt-get install povray)\n");
+            fprintf(stderr, "  skipped: povray is not installed (apt-get install povray)\n");
         }
         return;
     }
     static const PovCase cases[] = {
         {"whitted", "scenes/whitted.rf", "cp scenes/bench/whitted.pov \"$d/scene.pov\"", 160, 120, 6e-4, 1.5e-4, 0.0},
-        {"tetra", "scenes/spd/tetra.nff --depth 5", "python3 tools/nff2pov.py scenes/spd/tetra.nff --depth 5 --size 128 128 -o \"$d/scene.pov\"", 128, 128, 6e-4, 1.5e-4, 0.0},
-        {"balls", "scenes/spd/balls.nff --depth 5", "python3 tools/nff2pov.py scenes/spd/balls.nff --depth 5 --size 128 128 -o \"$d/scene.pov\"", 128, 128, 6e-4, 1.5e-4, 0.0},
-        {"rings", "scenes/spd/rings.nff --depth 5", "python3 tools/nff2pov.py scenes/spd/rings.nff --depth 5 --size 128 128 -o \"$d/scene.pov\"", 128, 128, 6e-4, 1.5e-4, 0.0},
-        {"tree", "scenes/spd/tree.nff --depth 5", "python3 tools/nff2pov.py scenes/spd/tree.nff --depth 5 --size 128 128 -o \"$d/scene.pov\"", 128, 128, 6e-4, 1.5e-4, 0.0},
+        {"tetra", "scenes/spd/tetra.nff --depth 5", "$RF export --quiet --pov \"$d/scene.pov\" --depth 5 --width 128 --height 128 scenes/spd/tetra.nff", 128, 128, 6e-4, 1.5e-4, 0.0},
+        {"balls", "scenes/spd/balls.nff --depth 5", "$RF export --quiet --pov \"$d/scene.pov\" --depth 5 --width 128 --height 128 scenes/spd/balls.nff", 128, 128, 6e-4, 1.5e-4, 0.0},
+        {"rings", "scenes/spd/rings.nff --depth 5", "$RF export --quiet --pov \"$d/scene.pov\" --depth 5 --width 128 --height 128 scenes/spd/rings.nff", 128, 128, 6e-4, 1.5e-4, 0.0},
+        {"tree", "scenes/spd/tree.nff --depth 5", "$RF export --quiet --pov \"$d/scene.pov\" --depth 5 --width 128 --height 128 scenes/spd/tree.nff", 128, 128, 6e-4, 1.5e-4, 0.0},
+        /* spot and directional lights, an open cylinder, inverse-square light through POV-Ray's
+         * fade; asymmetric, so a mirrored camera fails */
+        {"crosscheck-diffuse", "scenes/crosscheck/diffuse.rf", "$RF export --quiet --pov \"$d/scene.pov\" scenes/crosscheck/diffuse.rf", 160, 120, 6e-4, 1.5e-4, 0.0},
+        /* Fresnel glass with opaque shadows (the exporter's shadow discs) */
+        {"crosscheck-glass", "scenes/crosscheck/glass.rf", "$RF export --quiet --pov \"$d/scene.pov\" scenes/crosscheck/glass.rf", 160, 120, 6e-4, 1.5e-4, 0.0},
     };
     char dir[] = "/tmp/rf_povray_XXXXXX";
     if (!mkdtemp(dir)) {
@@ -52,10 +59,10 @@ static void t_povray_full_renders(void)
         char cmd[2048];
         int code;
         snprintf(cmd, sizeof cmd,
-                 "d=%s; %s && povray +I\"$d/scene.pov\" +O\"$d/pov.exr\" +FE +W%d +H%d -A -D -V +WT2 "
+                 "d=%s; RF=%s; %s && povray +I\"$d/scene.pov\" +O\"$d/pov.exr\" +FE +W%d +H%d -A -D -V +WT2 "
                  "Declare=ADC=0 >\"$d/pov.log\" 2>&1 && %s render %s --width %d --height %d -o \"$d/rf.exr\" "
                  ">/dev/null 2>&1 && %s diff \"$d/rf.exr\" \"$d/pov.exr\" --kv",
-                 dir, c->pov_setup, c->w, c->h, rf_test_bin(), c->refray_args, c->w, c->h, rf_test_bin());
+                 dir, rf_test_bin(), c->pov_setup, c->w, c->h, rf_test_bin(), c->refray_args, c->w, c->h, rf_test_bin());
         const char *out = rf_test_run(cmd, &code);
         double max_abs = rf_test_diff_kv(out, "max_abs"), mean_abs = rf_test_diff_kv(out, "mean_abs"),
                pct = rf_test_diff_kv(out, "pct_above_255");

@@ -33,8 +33,10 @@ typedef struct {
     int samples;         /* Mitsuba's and pbrt's samples per pixel (0: the scene's) */
     int lossy;           /* 1: write the nearest thing for what cannot be represented, and warn */
     int two_sided;       /* 1: every primitive is visible from both sides (refray --two-sided) */
-    int filtered_shadows; /* 1: the scene is compared with refray --shadows filtered (POV-Ray's
-                             own rule); 0: shadows of transmitting objects are opaque */
+    int shadows;          /* the shadow rule refray renders with (RfShadowMode; -1: the scene's,
+                             RfRenderSettings.shadows): POV-Ray's own is FILTERED; OPAQUE is
+                             written for POV-Ray with shadow discs, FILTERED cannot be written
+                             for Mitsuba or pbrt where something transmits */
 } RfExportOptions;
 
 RfExportOptions rf_export_options_default(void);

@@ -30,7 +30,7 @@ static void usage(FILE *out)
             "  --depth D           refray's recursion depth to match (default: the scene's)\n"
             "  --samples N         samples per pixel for Mitsuba and pbrt (default: the scene's)\n"
             "  --two-sided         every surface visible from both sides (as refray render --two-sided)\n"
-            "  --shadows opaque|filtered  the shadow rule refray is compared with (default opaque)\n"
+            "  --shadows opaque|filtered  the shadow rule refray renders with (default: the scene's)\n"
             "  --nff-fov centres|edges    how NFF's angle is read (as refray render)\n"
             "  --lossy             write the nearest thing for what cannot be represented, with a warning\n"
             "  --quiet             no notes on stderr (refusals are still printed)\n"
@@ -92,7 +92,7 @@ int rf_cmd_export(int argc, char **argv)
                 fprintf(stderr, "refray export: bad value '%s' for --shadows: opaque or filtered\n", v);
                 return RF_EXIT_USAGE;
             }
-            eo.filtered_shadows = strcmp(v, "filtered") == 0;
+            eo.shadows = strcmp(v, "filtered") == 0 ? RF_SHADOWS_FILTERED : RF_SHADOWS_OPAQUE;
             break;
         case O_FOV:
             if (strcmp(v, "centres") != 0 && strcmp(v, "edges") != 0) {

@@ -13,6 +13,7 @@ RfExportOptions rf_export_options_default(void)
     RfExportOptions o;
     memset(&o, 0, sizeof o);
     o.format = RF_EXPORT_MITSUBA;
+    o.shadows = -1;
     return o;
 }
 
@@ -186,8 +187,8 @@ void rf__ex_common_header(RfExCtx *c, const char *lead)
                   c->o->two_sided ? "every one visible from both sides (refray --two-sided)"
                                   : "as the scene says (one-sided ones are noted where the target differs)");
     rf__ex_printf(c, "%sshadows of transmitting objects: %s\n", lead,
-                  c->o->filtered_shadows ? "filtered (compare with refray --shadows filtered)"
-                                         : "opaque (refray's default)");
+                  c->filtered ? "filtered by kt, straight through (refray --shadows filtered, POV-Ray's rule)"
+                              : "opaque (refray's default)");
 }
 
 void rf__ex_common_checks(RfExCtx *c, int area_ok, int lens_ok)
@@ -215,6 +216,9 @@ void rf__ex_common_checks(RfExCtx *c, int area_ok, int lens_ok)
         if (x.emits)
             rf__ex_note(c, m->loc, 1, "material '%s': emission: refray adds it to the surface's radiance only, "
                         "an emitter in %s would light other surfaces (dropped)", m->name, to);
+        if (x.transmits && c->filtered && c->o->format != RF_EXPORT_POV)
+            rf__ex_note(c, m->loc, 1, "material '%s' transmits and shadows are filtered: %s's shadow rays stop "
+                        "at every surface (written opaque; render refray with --shadows opaque)", m->name, to);
         if (x.glossy)
             rf__ex_note(c, m->loc, 1, "material '%s': glossy %s: refray's cos^N lobe around the ideal ray has no "
                         "counterpart in %s (written as ideal)", m->name, rf__ex_num(c, m->gloss), to);
@@ -296,6 +300,7 @@ RfStatus rf_scene_export(const RfScene *scene, const RfExportOptions *opt, RfExp
     c->height = opt->height > 0 ? opt->height : scene->render.height;
     c->depth = opt->depth > 0 ? opt->depth : scene->render.max_depth;
     c->samples = opt->samples > 0 ? opt->samples : scene->render.samples;
+    c->filtered = (opt->shadows >= 0 ? opt->shadows : (int)scene->render.shadows) == RF_SHADOWS_FILTERED;
     c->win = rf_scene_camera_window(&scene->camera, c->width, c->height);
     camera_basis(c);
     if (scene->motion_count > 0) {

@@ -16,6 +16,7 @@ typedef struct {
     RfExport *ex;
     RfExportFile *out; /* the file being written */
     int width, height, depth, samples;
+    int filtered;     /* shadows of transmitting objects filtered (RF_SHADOWS_FILTERED), else opaque */
     RfWindow win;     /* the image window at distance win.d for width x height */
     RfVec3 u, v, w;   /* the §3.4 camera basis: right, up, backward (w = normalise(eye - target)) */
     char ring[RF_EX_RING][RF_EX_SLOT];

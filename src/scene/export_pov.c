@@ -177,9 +177,9 @@ static void write_prim(RfExCtx *c, const RfPrimitive *p, size_t *one_sided, RfSr
         return;
     }
     rf__ex_printf(c, "  material { M%d } }\n", p->material);
-    if (p->type == RF_PRIM_SPHERE && positive_kt(m) && !c->o->filtered_shadows)
+    if (p->type == RF_PRIM_SPHERE && positive_kt(m) && !c->filtered)
         opaque_shadow_discs(c, p);
-    else if (positive_kt(m) && !c->o->filtered_shadows)
+    else if (positive_kt(m) && !c->filtered)
         rf__ex_note(c, p->loc, 1, "transmitting %s: POV-Ray lets shadow rays through it, refray's shadows of "
                     "transmitting objects are opaque (only spheres get a shadow disc; compare with refray "
                     "--shadows filtered)", rf_prim_type_name(p->type));
