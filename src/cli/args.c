@@ -94,6 +94,9 @@ const RfOpt rf_opts_render[] = {
     {"preview", RF_ARG_PREVIEW, NULL, "render a NaN, Inf or negative sample black (and count it) instead of failing",
      NULL},
     {"local", RF_ARG_LOCAL, NULL, "primary rays and local Phong only (no shadows, reflection, refraction)", NULL},
+    {"two-sided", RF_ARG_TWO_SIDED, NULL, "every surface visible from both sides, as in POV-Ray and Mitsuba", NULL},
+    {"shadows", RF_ARG_SHADOWS, "MODE", "opaque, or filtered by the kt of each surface crossed, as POV-Ray "
+     "(default: the scene's, opaque)", "opaque or filtered"},
     RF_OPT_TABLE_END,
 };
 
@@ -106,6 +109,12 @@ int rf_arg_render(int key, const char *v, RfRenderOptions *opt)
         break;
     case RF_ARG_LOCAL:
         opt->local_only = 1;
+        break;
+    case RF_ARG_TWO_SIDED:
+        opt->two_sided = 1;
+        break;
+    case RF_ARG_SHADOWS:
+        ok = (opt->shadows = rf_shadow_mode_parse(v)) >= 0;
         break;
     case RF_ARG_WIDTH:
         ok = rf_arg_int(v, 1, 65536, &opt->width);

@@ -20,7 +20,8 @@ enum {
     RF_ARG_GAMMA = 0x1000, RF_ARG_SRGB, RF_ARG_NFF_FOV,
     RF_ARG_WIDTH = 0x1100, RF_ARG_HEIGHT, RF_ARG_SAMPLES, RF_ARG_DEPTH, RF_ARG_THREADS, RF_ARG_SEED,
     RF_ARG_SAMPLER, RF_ARG_ADAPTIVE_THRESHOLD, RF_ARG_ADAPTIVE_DEPTH, RF_ARG_FILTER, RF_ARG_FILTER_RADIUS,
-    RF_ARG_APERTURE, RF_ARG_FOCUS, RF_ARG_LIGHT_SAMPLES, RF_ARG_KERNEL, RF_ARG_PREVIEW, RF_ARG_LOCAL
+    RF_ARG_APERTURE, RF_ARG_FOCUS, RF_ARG_LIGHT_SAMPLES, RF_ARG_KERNEL, RF_ARG_PREVIEW, RF_ARG_LOCAL,
+    RF_ARG_TWO_SIDED, RF_ARG_SHADOWS
 };
 
 /* --gamma G and --srgb: how a PNG is encoded or decoded. */
@@ -33,7 +34,8 @@ int rf_arg_shared(int key, const char *v, RfLoadOptions *lopt, RfPngOptions *pop
 
 /* The options that decide a render (`refray render` and `refray trace`): --width, --height,
  * --samples, --depth, --threads, --seed, --sampler, --adaptive-threshold, --adaptive-depth,
- * --filter, --filter-radius, --aperture, --focus, --light-samples, --kernel, --preview, --local. */
+ * --filter, --filter-radius, --aperture, --focus, --light-samples, --kernel, --preview, --local,
+ * --two-sided, --shadows. */
 extern const RfOpt rf_opts_render[];
 /* 0 when key is not one of rf_opts_render, 1 when handled, -1 for a bad value. */
 int rf_arg_render(int key, const char *v, RfRenderOptions *opt);

@@ -243,6 +243,8 @@ int rf_cmd_info(int argc, char **argv)
         printf("          sampler %s", rf_sampler_name(r->sampler));
     printf(", filter %s radius %g, shutter %g .. %g\n", rf_filter_name(r->filter.kind), r->filter.radius,
            r->shutter_open, r->shutter_close);
+    if (r->shadows == RF_SHADOWS_FILTERED)
+        printf("          shadows filtered (by the kt of every surface a shadow ray crosses)\n");
     printf("         ");
     rgb("background", r->background);
     rgb("ambient", r->ambient);

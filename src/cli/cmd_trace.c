@@ -100,6 +100,8 @@ static void print_json(Printer *p, const RfTraceEvent *e)
         fprintf(f, ", \"distance\": %.17g, \"N_dot_L\": %.17g, \"intensity\": ", e->distance, e->n_dot_l);
         rgb(f, e->intensity, 1);
         fprintf(f, ", \"visible\": %s", e->visible > 0 ? "true" : e->visible == 0 ? "false" : "\"behind\"");
+        fprintf(f, ", \"transmittance\": ");
+        rgb(f, e->transmittance, 1);
         fprintf(f, ", \"diffuse\": ");
         rgb(f, e->diffuse, 1);
         fprintf(f, ", \"specular\": ");
@@ -175,7 +177,14 @@ static void print_tree(Printer *p, const RfTraceEvent *e)
         else if (e->visible == 0)
             fprintf(f, ": the shadow ray is blocked\n");
         else {
-            fprintf(f, ": lit\n%*s    diffuse ", ind, "");
+            RfRgb tr = e->transmittance;
+            if (tr.r != 1.0 || tr.g != 1.0 || tr.b != 1.0) { /* filtered shadows: through transmitting surfaces */
+                fprintf(f, ": lit through transmitting surfaces, I times ");
+                rgb(f, tr, 0);
+            } else {
+                fprintf(f, ": lit");
+            }
+            fprintf(f, "\n%*s    diffuse ", ind, "");
             rgb(f, e->diffuse, 0);
             fprintf(f, " + specular ");
             rgb(f, e->specular, 0);

@@ -66,7 +66,7 @@ static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHi
         } else if (RF_ON(RF_K_MOTION) ? rf_tracer_occluded_cached_at(job->tracer, sr, ps->motion, 0.0, dist, cache)
                                       : rf_tracer_occluded_cached(job->tracer, sr, 0.0, dist, cache)) {
             if (RF_TRACE_ON(ps)) {
-                ev.visible = 0;
+                ev.visible = 0, ev.transmittance = rf_rgb(0, 0, 0);
                 ps->log->trace(ps->log->trace_ctx, &ev);
             }
             return 0;
