@@ -300,7 +300,7 @@ static inline void rf_fuzz_formula(const uint8_t *data, size_t size)
     if (size > 0 && devnull) {
         FILE *in = fmemopen((void *)data, size, "r");
         if (in) {
-            (void)rf_formula_batch(in, devnull);
+            (void)rf_formula_batch(in, devnull, NULL, NULL);
             fclose(in);
         }
     }

@@ -1,5 +1,5 @@
 /* The documentation's examples are what the commands print: every `$ refray ...` line in a
- * fenced block of README.md and docs/ (every .md there) is run (from a scratch folder holding scenes/ and the
+ * fenced block of README.md and docs/ (every .md there) is run (from a scratch folder holding scenes/, docs/ and the
  * files the examples name, tests/data/docs/), and the lines below it must be its output
  * (stdout and stderr), in order. A line `...` stands for any number of lines; the example may
  * stop before the output does. Trailing blanks do not count. Run times, rays per second, the idle share and the thread count
@@ -139,7 +139,8 @@ static void t_doc_examples(void)
         rf_test_fail(__FILE__, __LINE__, "cannot set up the scratch folder (binary, tests/data/docs)");
         return;
     }
-    snprintf(sh, sizeof sh, "ln -s '%s/scenes' '%s/scenes' && cp '%s'/* '%s'/ && mkdir '%s/out'", root, dir, data, dir, dir);
+    snprintf(sh, sizeof sh, "ln -s '%s/scenes' '%s/scenes' && ln -s '%s/docs' '%s/docs' && cp '%s'/* '%s'/ && mkdir '%s/out'",
+             root, dir, root, dir, data, dir, dir);
     rf_test_run(sh, &rc);
     RF_CHECK_EQ_INT(rc, 0);
     int count = check_file("README.md", bin, dir);

@@ -125,7 +125,7 @@ static void t_bad_input_table(void)
         {"a DAG of 30 doubling levels (the verifier refuses to expand it)", "$V dag.rf --rays 100", 2,
          "expands to 2147483647 placements"},
         {"3000 nested instances (verifier)", "$V chain.rf --rays 100", -1, "nested deeper than 64 levels"},
-        {"a 4-vector for a 3-vector", "$R formula srgb-encode rgb=1,2,3,4", 1, "must be a vector of 3 finite numbers"},
+        {"a 4-vector for a 3-vector", "$R formula srgb-encode rgb=1,2,3,4", 5, "input 'rgb' has 4 components; it takes 3"},
         {"mesh /dev/zero", "$R info zero.rf", 4, "zero.rf:3:6: mesh '/dev/zero': not a regular file"},
         {"mtllib /dev/zero", "$R info zero.obj", 4, "material library '/dev/zero': not a regular file"},
         {"a FIFO as the scene", "rm -f fifo.rf; mkfifo fifo.rf; $R info fifo.rf", 4,
@@ -155,8 +155,8 @@ static void t_bad_input_table(void)
         /* bad text */
         {"a UTF-8 byte order mark", "$R info bom.rf", 0, "primitives 1"},
         {"CRLF line ends keep their positions", "$R info crlf.rf", 4, "crlf.rf:3:16: unknown attribute 'bogus'"},
-        {"trailing garbage after a JSON line", "$R formula --batch < garbage.jsonl", 1, "not valid JSON"},
-        {"a NUL byte in a batch line", "$R formula --batch < nul.jsonl", 1, "not valid JSON"},
+        {"trailing garbage after a JSON line", "$R formula --batch garbage.jsonl", 4, "garbage.jsonl:1: the line is not valid JSON"},
+        {"a NUL byte in a batch line", "$R formula --batch nul.jsonl", 4, "nul.jsonl:1: the line is not valid JSON"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         run_case(&cases[i]);

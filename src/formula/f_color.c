@@ -12,7 +12,7 @@
 static int in_rgb(RfFormulaCall *c, const char *name, RfVec3 *v)
 {
     double a[3];
-    if (rf_in_vec(c, name, 3, a, NULL))
+    if (rf_in_vec(c, name, 0, a, NULL))
         return 1;
     *v = rf_vec3(a[0], a[1], a[2]);
     return 0;
@@ -261,7 +261,7 @@ static int f_cmy_to_cmyk(RfFormulaCall *c)
 {
     RfVec3 v;
     int variant;
-    if (in_rgb(c, "cmy", &v) || rf_in_choice(c, "variant", "script|normalized", &variant))
+    if (in_rgb(c, "cmy", &v) || rf_in_choice(c, "variant", &variant))
         return 1;
     RfVec4 k = rf_cmy_to_cmyk(v, (RfCmykVariant)variant);
     double a[4] = {k.x, k.y, k.z, k.w};
@@ -273,7 +273,7 @@ static int f_cmyk_to_cmy(RfFormulaCall *c)
 {
     double a[4];
     int variant;
-    if (rf_in_vec(c, "cmyk", 4, a, NULL) || rf_in_choice(c, "variant", "script|normalized", &variant))
+    if (rf_in_vec(c, "cmyk", 0, a, NULL) || rf_in_choice(c, "variant", &variant))
         return 1;
     out_v3(c, "cmy", rf_cmyk_to_cmy(rf_vec4(a[0], a[1], a[2], a[3]), (RfCmykVariant)variant));
     return 0;
@@ -303,7 +303,7 @@ static int f_hsv_to_rgb(RfFormulaCall *c)
 static int in_matrix(RfFormulaCall *c, RfMat3 *m)
 {
     int i;
-    if (rf_in_choice(c, "matrix", "script|cie1931|srgb", &i))
+    if (rf_in_choice(c, "matrix", &i))
         return 1;
     *m = rf_rgb_to_xyz_matrix((RfRgbSpace)i);
     return 0;
@@ -384,7 +384,7 @@ static int in_xy(RfFormulaCall *c, RfVec2 *p)
 static int in_point2(RfFormulaCall *c, const char *name, RfVec2 *p)
 {
     double a[2];
-    if (rf_in_vec(c, name, 2, a, NULL))
+    if (rf_in_vec(c, name, 0, a, NULL))
         return 1;
     *p = rf_vec2(a[0], a[1]);
     return 0;
@@ -430,10 +430,10 @@ static int in_primaries(RfFormulaCall *c, RfVec2 p[3])
 {
     double v[6];
     int n = 0;
-    if (rf_in_vecs(c, "primaries", 2, 3, v, &n, NULL))
+    if (rf_in_vecs(c, "primaries", 0, 3, v, &n, NULL))
         return 1;
     if (n != 3)
-        return rf_call_error(c, "primaries must be three xy points");
+        return rf_call_bad_input(c, "primaries must be three xy points, not %d", n);
     for (int i = 0; i < 3; i++)
         p[i] = rf_vec2(v[2 * i], v[2 * i + 1]);
     return 0;
@@ -457,7 +457,7 @@ static int f_gamut_map(RfFormulaCall *c)
     RfVec2 p, prim[3], w, r;
     int method;
     if (in_xy(c, &p) || in_primaries(c, prim) || in_point2(c, "white", &w) ||
-        rf_in_choice(c, "method", "toward-white|nearest", &method))
+        rf_in_choice(c, "method", &method))
         return 1;
     RfStatus st = rf_gamut_map(p, prim, w, (RfGamutMethod)method, &r);
     if (st == RF_ERR_DEGENERATE)
@@ -471,84 +471,143 @@ static int f_gamut_map(RfFormulaCall *c)
     return 0;
 }
 
-#define SPECTRUM_IN "lambda_nm:nums; power:nums"
+#define SPECTRUM_IN "lambda_nm:nums the wavelengths of the samples, increasing (nm); " \
+                    "power:nums the spectral power at each wavelength (any unit), as many"
 #define SPECTRUM_NOTE " (spectrum interpolated linearly onto the 1 nm grid, 0 outside its range, " \
                       "summed with 1 nm steps)"
+#define RGB_IN(what) "rgb:rgb " what ", linear, usually in [0,1]"
+#define QUANT_IN "i_min:num the smallest intensity I_min (> 0); i_max:num the largest intensity " \
+                 "I_max (> I_min); step:num=0.02 the relative step (Weber fraction) that is just visible"
+#define PRIMARIES_IN "primaries:vecs2=" SRGB_PRIMARIES " the xy chromaticities of the red, green " \
+                     "and blue primaries (default sRGB)"
+#define XY_IN "x:num the chromaticity x; y:num the chromaticity y"
 
 const RfFormula rf_formulas_color[] = {
     {"dynamic-range", "1.1", "dynamic range R_d = (I_max + k)/(I_min + k), k: ambient light",
-     "i_min:num; i_max:num; k:num=0", "r_d:num", NULL, f_dynamic_range},
+     "i_min:num the darkest intensity I_min (>= 0); i_max:num the brightest intensity I_max; "
+     "k:num=0 the ambient light added to both (>= 0)", "r_d:num the dynamic range R_d", NULL,
+     f_dynamic_range, "i_min=0.01 i_max=100 k=0.1"},
     {"linear-steps", "1.1.1", "linear quantisation: steps = (I_max - I_min)/(step I_min) (not rounded), "
-     "bits = ceil(log2(steps))", "i_min:num; i_max:num; step:num=0.02", "steps:num; bits:num", NULL,
-     f_linear_steps},
+     "bits = ceil(log2(steps))", QUANT_IN,
+     "steps:num the number of equal steps of size step I_min (not rounded); bits:num ceil(log2(steps))",
+     NULL, f_linear_steps, "i_min=0.01 i_max=1"},
     {"exp-steps", "1.1.1", "exponential quantisation: steps = ceil(ln(I_max/I_min)/ln(1+step)), "
-     "bits = ceil(log2(steps)); steps_script = the script's estimate log10(R) 120",
-     "i_min:num; i_max:num; step:num=0.02", "steps:num; bits:num; steps_script:num", NULL, f_exp_steps},
+     "bits = ceil(log2(steps)); steps_script = the script's estimate log10(R) 120", QUANT_IN,
+     "steps:num the number of steps, each (1+step) times the last; bits:num ceil(log2(steps)); "
+     "steps_script:num the script's estimate log10(I_max/I_min) 120 (for step = 0.02)",
+     NULL, f_exp_steps, "i_min=0.01 i_max=1"},
     {"exp-level", "1.1.1", "exponential quantisation level I_n = I_min (1+step)^n",
-     "i_min:num; n:num; step:num=0.02", "i:num", NULL, f_exp_level},
+     "i_min:num the smallest intensity I_min (> 0); n:num the level number; "
+     "step:num=0.02 the relative step between levels", "i:num the intensity I_n of level n", NULL,
+     f_exp_level, "i_min=0.01 n=100"},
     {"power-transfer", "1.1.1", "power-law transfer function I(n) = (n/N)^gamma I_max, n in [0, N]",
-     "n:num; n_max:num; gamma:num; i_max:num=1", "i:num", NULL, f_power_transfer},
+     "n:num the code value, 0 <= n <= n_max; n_max:num the largest code value N (> 0); "
+     "gamma:num the exponent (> 0); i_max:num=1 the intensity at n = N",
+     "i:num the intensity I(n)", NULL, f_power_transfer, "n=128 n_max=255 gamma=2.2"},
     {"gamma-encode", "1.1.2", "gamma correction per channel: a' = a^(1/gamma) (negative values -> 0)",
-     "rgb:vec3; gamma:num=2.2", "rgb:vec", "the script writes alpha ∝ alpha^(1/gamma); it is "
-     "alpha' = alpha^(1/gamma)", f_gamma_encode},
+     RGB_IN("the linear colour") "; gamma:num=2.2 the display's exponent (> 0)",
+     "rgb:rgb the encoded colour a^(1/gamma) per channel", "the script writes alpha ∝ alpha^(1/gamma); it is "
+     "alpha' = alpha^(1/gamma)", f_gamma_encode, "rgb=0.5,0.25,1"},
     {"gamma-decode", "1.1.2", "inverse gamma per channel: a = a'^gamma (negative values -> 0)",
-     "rgb:vec3; gamma:num=2.2", "rgb:vec", NULL, f_gamma_decode},
+     "rgb:rgb the encoded colour, in [0,1]; gamma:num=2.2 the display's exponent (> 0)",
+     "rgb:rgb the linear colour a'^gamma per channel", NULL, f_gamma_decode, "rgb=0.5"},
     {"srgb-encode", "beyond", "IEC 61966-2-1 sRGB curve per channel: 12.92 v for v <= 0.0031308, "
-     "else 1.055 v^(1/2.4) - 0.055", "rgb:vec3", "rgb:vec", NULL, f_srgb_encode},
+     "else 1.055 v^(1/2.4) - 0.055", RGB_IN("the linear colour"), "rgb:rgb the sRGB-encoded colour",
+     NULL, f_srgb_encode, "rgb=0.5,0.002,1"},
     {"srgb-decode", "beyond", "inverse sRGB curve per channel: v/12.92 for v <= 0.04045, "
-     "else ((v + 0.055)/1.055)^2.4", "rgb:vec3", "rgb:vec", NULL, f_srgb_decode},
+     "else ((v + 0.055)/1.055)^2.4", "rgb:rgb the sRGB-encoded colour, in [0,1]",
+     "rgb:rgb the linear colour", NULL, f_srgb_decode, "rgb=0.5,0.04,1"},
     {"quantize", "1.1", "quantisation to n bits: round(v (2^bits - 1)), v clamped to [0, 1]",
-     "value:num; bits:int=8", "code:num", NULL, f_quantize},
+     "value:num the value, clamped to [0,1]; bits:int=8 the number of bits, 1..16",
+     "code:num the integer code round(value (2^bits - 1))", NULL, f_quantize, "value=0.5 bits=8"},
     {"alpha-over", "1.2", "Porter-Duff a over b: alpha = a_a + a_b (1 - a_a); straight colours "
      "rgb = (C_a a_a + C_b a_b (1 - a_a))/alpha (0 if alpha = 0); premultiplied C_a + C_b (1 - a_a)",
-     "rgb_a:vec3; alpha_a:num; rgb_b:vec3; alpha_b:num; premultiplied:bool=false",
-     "rgb:vec; alpha:num", NULL, f_alpha_over},
-    {"frequency", "1.3", "frequency of light nu = c/lambda, c = 299792458 m/s", "lambda_nm:num",
-     "nu_hz:num", NULL, f_frequency},
+     "rgb_a:rgb the colour C_a in front; alpha_a:num its opacity a_a in [0,1]; "
+     "rgb_b:rgb the colour C_b behind; alpha_b:num its opacity a_b in [0,1]; "
+     "premultiplied:bool=false the colours are premultiplied by their alpha",
+     "rgb:rgb the composite colour (premultiplied when the inputs are); alpha:num the composite opacity",
+     NULL, f_alpha_over, "rgb_a=1,0,0 alpha_a=0.5 rgb_b=0,0,1 alpha_b=1"},
+    {"frequency", "1.3", "frequency of light nu = c/lambda, c = 299792458 m/s",
+     "lambda_nm:num the wavelength (nm, > 0)", "nu_hz:num the frequency (Hz)", NULL, f_frequency,
+     "lambda_nm=500"},
     {"cone-response", "1.3.1", "cone responses s, m, l: sums over the CIE 2006 2-degree LMS cone "
-     "fundamentals (390-830 nm)" SPECTRUM_NOTE, SPECTRUM_IN, "s:num; m:num; l:num", NULL, f_cone_response},
-    {"luminance", "1.4.2", "luminance approximation Y = 0.3 r + 0.59 g + 0.11 b", "rgb:vec3", "y:num",
-     "the script writes 0.59q; q is g", f_luminance},
-    {"rgb-to-cmy", "1.4.3", "CMY = 1 - RGB", "rgb:vec3", "cmy:vec", NULL, f_rgb_to_cmy},
-    {"cmy-to-rgb", "1.4.3", "RGB = 1 - CMY", "cmy:vec3", "rgb:vec", NULL, f_cmy_to_rgb},
+     "fundamentals (390-830 nm)" SPECTRUM_NOTE, SPECTRUM_IN,
+     "s:num the short-wave cone response; m:num the middle-wave cone response; "
+     "l:num the long-wave cone response", NULL, f_cone_response,
+     "lambda_nm=500,550,600 power=1,1,1"},
+    {"luminance", "1.4.2", "luminance approximation Y = 0.3 r + 0.59 g + 0.11 b", RGB_IN("the colour"),
+     "y:num the luminance Y", "the script writes 0.59q; q is g", f_luminance, "rgb=1,0.5,0.25"},
+    {"rgb-to-cmy", "1.4.3", "CMY = 1 - RGB", RGB_IN("the colour"), "cmy:rgb the colour as c,m,y",
+     NULL, f_rgb_to_cmy, "rgb=1,0.5,0.25"},
+    {"cmy-to-rgb", "1.4.3", "RGB = 1 - CMY", "cmy:rgb the colour as c,m,y in [0,1] (one number: grey)",
+     "rgb:rgb the colour as r,g,b", NULL, f_cmy_to_rgb, "cmy=0,0.5,0.75"},
     {"cmy-to-cmyk", "1.4.3", "K = min(C,M,Y); variant script|normalized: (C-K, M-K, Y-K, K) or "
-     "((C-K)/(1-K), ..., K), black (K = 1) -> (0,0,0,1)", "cmy:vec3; variant:str=script", "cmyk:vec",
-     NULL, f_cmy_to_cmyk},
+     "((C-K)/(1-K), ..., K), black (K = 1) -> (0,0,0,1)",
+     "cmy:rgb the colour as c,m,y in [0,1] (one number: grey); "
+     "variant:script|normalized=script script: C-K, normalized: (C-K)/(1-K)",
+     "cmyk:vec the colour as c,m,y,k", NULL, f_cmy_to_cmyk, "cmy=0.2,0.5,0.6 variant=normalized"},
     {"cmyk-to-cmy", "1.4.3", "inverse of cmy-to-cmyk: script C = C' + K; normalized C = C'(1-K) + K",
-     "cmyk:vec; variant:str=script", "cmy:vec", NULL, f_cmyk_to_cmy},
+     "cmyk:vec4 the colour as c,m,y,k in [0,1]; "
+     "variant:script|normalized=script how the cmyk was made (see cmy-to-cmyk)",
+     "cmy:rgb the colour as c,m,y", NULL, f_cmyk_to_cmy, "cmyk=0,0.375,0.5,0.2 variant=normalized"},
     {"rgb-to-hsv", "1.4.4", "hexcone model: V = max, S = (max-min)/max, H in [0,360); grey -> H = 0, "
-     "S = 0", "rgb:vec3", "h_deg:num; s:num; v:num", NULL, f_rgb_to_hsv},
-    {"hsv-to-rgb", "1.4.4", "hexcone model back to RGB (H taken modulo 360)", "h_deg:num; s:num; v:num",
-     "rgb:vec", NULL, f_hsv_to_rgb},
+     "S = 0", RGB_IN("the colour"),
+     "h_deg:num the hue H in [0,360) (degrees); s:num the saturation S in [0,1]; v:num the value V = max",
+     NULL, f_rgb_to_hsv, "rgb=1,0.5,0.25"},
+    {"hsv-to-rgb", "1.4.4", "hexcone model back to RGB (H taken modulo 360)",
+     "h_deg:num the hue H (degrees, taken modulo 360); s:num the saturation S in [0,1]; "
+     "v:num the value V", "rgb:rgb the colour", NULL, f_hsv_to_rgb, "h_deg=20 s=0.75 v=1"},
     {"spectrum-to-rgb", "1.4.5", "r, g, b: sums over the CIE 1931 RGB colour matching functions "
      "(5 nm table, linear to 1 nm, 380-780 nm; negative lobes kept)" SPECTRUM_NOTE, SPECTRUM_IN,
-     "r:num; g:num; b:num", NULL, f_spectrum_to_rgb},
+     "r:num the sum with r-bar; g:num the sum with g-bar; b:num the sum with b-bar (may be negative)",
+     NULL, f_spectrum_to_rgb, "lambda_nm=500,550,600 power=1,1,1"},
     {"spectrum-to-xyz", "1.4.6", "tristimulus X, Y, Z: sums over the CIE 1931 2-degree x, y, z-bar "
-     "(360-830 nm)" SPECTRUM_NOTE, SPECTRUM_IN, "x:num; y:num; z:num (the tristimulus X, Y, Z)", NULL,
-     f_spectrum_to_xyz},
+     "(360-830 nm)" SPECTRUM_NOTE, SPECTRUM_IN,
+     "x:num the tristimulus X; y:num the tristimulus Y; z:num the tristimulus Z", NULL,
+     f_spectrum_to_xyz, "lambda_nm=500,550,600 power=1,1,1"},
     {"rgb-to-xyz", "1.4.6", "XYZ = M RGB; matrix script (the script's M) | cie1931 (exact CIE RGB, "
-     "rows x 1/0.17697) | srgb (IEC 61966-2-1 primaries, D65)", "rgb:vec3; matrix:str=script",
-     "xyz:vec; matrix:mat", NULL, f_rgb_to_xyz},
+     "rows x 1/0.17697) | srgb (IEC 61966-2-1 primaries, D65)",
+     RGB_IN("the colour") "; matrix:script|cie1931|srgb=script which M: the script's, the exact "
+     "CIE 1931 RGB one, or sRGB's (D65)",
+     "xyz:vec the colour X,Y,Z; matrix:mat the matrix M used", NULL, f_rgb_to_xyz,
+     "rgb=1,1,1 matrix=srgb"},
     {"xyz-to-rgb", "1.4.6", "RGB = M^-1 XYZ (matrix as in rgb-to-xyz; the output matrix is M^-1)",
-     "xyz:vec3; matrix:str=script", "rgb:vec; matrix:mat", NULL, f_xyz_to_rgb},
-    {"xyz-to-xyy", "1.4.7", "x = X/(X+Y+Z), y = Y/(X+Y+Z), Y; black -> (1/3, 1/3, 0)", "xyz:vec3",
-     "x:num; y:num; Y:num", NULL, f_xyz_to_xyy},
+     "xyz:vec3 the colour X,Y,Z (3 numbers, not one: X=Y=Z is not grey in general); "
+     "matrix:script|cie1931|srgb=script which M (see rgb-to-xyz)",
+     "rgb:rgb the colour; matrix:mat the matrix M^-1 used", NULL, f_xyz_to_rgb,
+     "xyz=0.9505,1,1.089 matrix=srgb"},
+    {"xyz-to-xyy", "1.4.7", "x = X/(X+Y+Z), y = Y/(X+Y+Z), Y; black -> (1/3, 1/3, 0)",
+     "xyz:vec3 the colour X,Y,Z", "x:num the chromaticity x; y:num the chromaticity y; "
+     "Y:num the luminance Y (= the input's Y)", NULL, f_xyz_to_xyy, "xyz=0.25,0.5,0.25"},
     {"xyy-to-xyz", "1.4.7", "X = (Y/y) x, Z = (Y/y)(1-x-y); y = 0 with Y != 0 is an error",
-     "x:num; y:num; Y:num", "xyz:vec", NULL, f_xyy_to_xyz},
+     XY_IN "; Y:num the luminance Y", "xyz:vec the colour X,Y,Z", NULL, f_xyy_to_xyz,
+     "x=0.25 y=0.5 Y=0.5"},
     {"locus", "1.5", "spectral locus: chromaticity of monochromatic light (x, y, z-bar interpolated "
-     "linearly, then normalised), 360-830 nm", "lambda_nm:num", "x:num; y:num", NULL, f_locus},
+     "linearly, then normalised), 360-830 nm", "lambda_nm:num the wavelength, 360..830 (nm)",
+     "x:num the chromaticity x; y:num the chromaticity y", NULL, f_locus, "lambda_nm=520"},
     {"dominant-wavelength", "1.5", "extend white -> C to the locus (polyline at 1 nm, 360-830 nm, "
      "closed by the purple line); purity = |WC|/|W boundary|; on the purple side lambda_nm = "
-     "-complementary (CIE)", "x:num; y:num; white:vec=" WHITE_THIRD,
-     "lambda_nm:num; purity:num; complementary_nm:num (null on the purple line); "
-     "on_purple_line:bool; boundary:vec", NULL, f_dominant_wavelength},
+     "-complementary (CIE)", XY_IN " of the colour C; white:vec2=" WHITE_THIRD " the white "
+     "point's x,y (default: equal energy, 1/3, 1/3)",
+     "lambda_nm:num the dominant wavelength (nm, negative: minus the complementary one, purple side); "
+     "purity:num the excitation purity |WC|/|W boundary|; complementary_nm:num the complementary "
+     "wavelength (nm, null when none exists); on_purple_line:bool the ray from white meets the purple line; "
+     "boundary:vec the x,y where the ray meets the locus or the purple line", NULL,
+     f_dominant_wavelength, "x=0.3 y=0.15"},
     {"mix", "1.5", "additive mixing: X, Y, Z add; the chromaticity lies on the segment, weighted by "
-     "X+Y+Z", "xyY_a:vec3; xyY_b:vec3", "x:num; y:num; Y:num", NULL, f_mix},
+     "X+Y+Z", "xyY_a:vec3 the first colour as x,y,Y; xyY_b:vec3 the second colour as x,y,Y",
+     "x:num the mixture's chromaticity x; y:num its chromaticity y; Y:num its luminance Y", NULL, f_mix,
+     "xyY_a=0.64,0.33,0.2126 xyY_b=0.3,0.6,0.7152"},
     {"in-gamut", "1.5", "inside the triangle of the primaries: all barycentric coordinates >= 0",
-     "x:num; y:num; primaries:vecs=" SRGB_PRIMARIES, "inside:bool; barycentric:vec", NULL, f_in_gamut},
+     XY_IN "; " PRIMARIES_IN,
+     "inside:bool the point lies in the gamut triangle (edges included); "
+     "barycentric:vec its barycentric coordinates with respect to the primaries", NULL, f_in_gamut,
+     "x=0.2 y=0.6"},
     {"gamut-map", "1.5", "map into the gamut triangle: method toward-white (along the line to the "
      "white point, hue kept) | nearest (closest point of the triangle); inside points stay",
-     "x:num; y:num; primaries:vecs=" SRGB_PRIMARIES "; white:vec=" WHITE_THIRD
-     "; method:str=toward-white", "x:num; y:num; shift:num; moved:bool", NULL, f_gamut_map},
-    {NULL, NULL, NULL, NULL, NULL, NULL, NULL},
+     XY_IN "; " PRIMARIES_IN "; white:vec2=" WHITE_THIRD " the white point's x,y (toward-white); "
+     "method:toward-white|nearest=toward-white along the line to white, or the nearest point",
+     "x:num the mapped chromaticity x; y:num the mapped chromaticity y; shift:num the distance moved in xy; "
+     "moved:bool the point was outside and has moved", NULL, f_gamut_map, "x=0.2 y=0.7"},
+    {NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL},
 };

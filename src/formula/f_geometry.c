@@ -16,10 +16,8 @@ static double norm_n(const double *a, int n)
 static int read_pair(RfFormulaCall *c, double *a, double *b, int *n)
 {
     int na = 0, nb = 0;
-    if (rf_in_vec(c, "a", 0, a, &na) || rf_in_vec(c, "b", 0, b, &nb))
+    if (rf_in_vec(c, "a", 0, a, &na) || rf_in_vec(c, "b", RF_DIM(na), b, &nb))
         return 1;
-    if (na != nb)
-        return rf_call_error(c, "a and b must have the same dimension");
     *n = na;
     return 0;
 }
@@ -72,9 +70,11 @@ static int f_dot(RfFormulaCall *c)
 
 static int f_cross(RfFormulaCall *c)
 {
-    RfVec3 a, b;
-    if (rf_in_vec3(c, "a", &a) || rf_in_vec3(c, "b", &b))
+    double pa[4] = {0, 0, 0, 0}, pb[4] = {0, 0, 0, 0};
+    int n;
+    if (read_pair(c, pa, pb, &n))
         return 1;
+    RfVec3 a = rf_vec3(pa[0], pa[1], pa[2]), b = rf_vec3(pb[0], pb[1], pb[2]); /* 2D: z = 0 */
     RfVec3 x = rf_vec3_cross(a, b);
     rf_out_vec3(c, "cross", x);
     double la = rf_vec3_length(a), lb = rf_vec3_length(b);
@@ -85,35 +85,30 @@ static int f_cross(RfFormulaCall *c)
     return 0;
 }
 
+/* Points of one length n (2D or 3D, as the spec says): the parser refuses any other. */
+static int read_points(RfFormulaCall *c, const char *names, double pts[][4], int count, int *n)
+{
+    const char *name = names;
+    for (int i = 0; i < count; i++, name += strlen(name) + 1)
+        if (rf_in_vec(c, name, i ? RF_DIM(*n) : 0, pts[i], i ? NULL : n))
+            return 1;
+    return 0;
+}
+
 static int f_triangle_normal(RfFormulaCall *c)
 {
-    RfVec3 a, b, p;
+    double pt[3][4] = {{0}};
+    int n;
     RfTriangleNormal t;
-    if (rf_in_vec3(c, "a", &a) || rf_in_vec3(c, "b", &b) || rf_in_vec3(c, "c", &p))
+    if (read_points(c, "a\0b\0c", pt, 3, &n))
         return 1;
+    RfVec3 a = rf_vec3(pt[0][0], pt[0][1], pt[0][2]), b = rf_vec3(pt[1][0], pt[1][1], pt[1][2]),
+           p = rf_vec3(pt[2][0], pt[2][1], pt[2][2]); /* 2D corners lie in the plane z = 0 */
     if (rf_triangle_normal(a, b, p, &t) != RF_OK)
         return rf_call_error(c, "the points are collinear: the triangle has no normal");
     rf_out_vec3(c, "n_raw", t.n_raw);
     rf_out_vec3(c, "n", t.n);
     rf_out_num(c, "area", t.area);
-    return 0;
-}
-
-/* p, q (and r) of one dimension n; the differences q-p, r-p */
-static int read_points(RfFormulaCall *c, const char *names, double pts[][4], int count, int *n)
-{
-    const char *name = names;
-    for (int i = 0; i < count; i++, name += strlen(name) + 1) {
-        int d;
-        if (rf_in_vec(c, name, 0, pts[i], &d))
-            return 1;
-        if (d == 4)
-            return rf_call_error(c, "input '%s' must be a 2D or 3D point", name);
-        if (i == 0)
-            *n = d;
-        else if (d != *n)
-            return rf_call_error(c, "all points must have the same dimension");
-    }
     return 0;
 }
 
@@ -158,12 +153,10 @@ static int f_basis_coordinates(RfFormulaCall *c)
     double basis[4 * 4], v[4], coords[4];
     const double *rows[4];
     int count, dim, nv;
-    if (rf_in_vecs(c, "basis", 0, 4, basis, &count, &dim) || rf_in_vec(c, "v", 0, v, &nv))
+    if (rf_in_vecs(c, "basis", 0, 4, basis, &count, &dim) || rf_in_vec(c, "v", RF_DIM(dim), v, &nv))
         return 1;
     if (count != dim)
-        return rf_call_error(c, "a basis of R^%d needs %d vectors, not %d", dim, dim, count);
-    if (nv != dim)
-        return rf_call_error(c, "v must have the dimension of the basis vectors (%d)", dim);
+        return rf_call_bad_input(c, "a basis of R^%d needs %d vectors, not %d", dim, dim, count);
     for (int i = 0; i < count; i++)
         rows[i] = basis + i * dim;
     if (rf_basis_coordinates(dim, rows, v, coords) != RF_OK)
@@ -192,26 +185,46 @@ static int f_barycentric(RfFormulaCall *c)
     return 0;
 }
 
+#define PT23 "(2D points lie in the plane z = 0)"
+
 const RfFormula rf_formulas_geometry[] = {
     {"length", "2.1", "length of a vector, |a| = sqrt(sum a_i^2), and the unit vector a/|a|",
-     "a:vec", "length:num; unit:vec (null for the zero vector)",
-     "the script writes |a| = sqrt(sum a_i); correct: sqrt(sum a_i^2)", f_length},
+     "a:vec234 the vector",
+     "length:num |a|; unit:vec a/|a| (null for the zero vector)",
+     "the script writes |a| = sqrt(sum a_i); correct: sqrt(sum a_i^2)", f_length, "a=3,4"},
     {"dot", "2.1", "scalar product <a,b> = sum a_i b_i = |a||b| cos(phi), and the angle phi",
-     "a:vec; b:vec", "dot:num; angle_deg:num (null with a zero vector)", NULL, f_dot},
+     "a:vec234 the first vector; b:vec234 the second vector, as long as a",
+     "dot:num <a,b>; angle_deg:num the angle phi between a and b, 0..180 (null with a zero vector)",
+     NULL, f_dot, "a=1,2,3 b=4,5,6"},
     {"cross", "2.1", "cross product a x b (2D vectors get z = 0); |a x b| = |a||b| sin(phi)",
-     "a:vec; b:vec", "cross:vec; sin_phi:num (null with a zero vector)",
+     "a:vec23 the first vector " PT23 "; b:vec23 the second vector, as long as a",
+     "cross:vec a x b (3 components); sin_phi:num |a x b|/(|a||b|) = sin(phi) (null with a zero vector)",
      "identities (iv), (v) lost their minus signs: a x (b x c) = b<a,c> - c<a,b>; "
-     "<a x b, c x d> = <a,c><b,d> - <a,d><b,c>", f_cross},
+     "<a x b, c x d> = <a,c><b,d> - <a,d><b,c>", f_cross, "a=1,0,0 b=1,1,0"},
     {"triangle-normal", "2.1", "n' = (b-a) x (c-a), n = n'/|n'|, oriented area |n'|/2",
-     "a:vec; b:vec; c:vec", "n_raw:vec; n:vec; area:num", NULL, f_triangle_normal},
+     "a:vec23 the first corner " PT23 "; b:vec23 the second corner; c:vec23 the third corner",
+     "n_raw:vec n' = (b-a) x (c-a), not normalised; n:vec the unit normal n'/|n'|; "
+     "area:num the triangle's area |n'|/2", NULL, f_triangle_normal, "a=0,0,0 b=2,0,0 c=0,1,0"},
     {"line-point", "2.2", "g(t) = P + t (Q - P); on the ray for t >= 0, on the segment for t in [0,1]",
-     "p:vec; q:vec; t:num", "point:vec; on_ray:bool; on_segment:bool", NULL, f_line_point},
+     "p:vec23 the point P (t = 0); q:vec23 the point Q (t = 1), as long as p; t:num the line parameter",
+     "point:vec g(t); on_ray:bool t >= 0; on_segment:bool 0 <= t <= 1", NULL, f_line_point,
+     "p=1,1 q=3,2 t=0.5"},
     {"plane-point", "2.2", "g(s,t) = P + s (Q - P) + t (R - P); in the parallelogram for s,t in [0,1]",
-     "p:vec; q:vec; r:vec; s:num; t:num", "point:vec; in_parallelogram:bool", NULL, f_plane_point},
+     "p:vec23 the point P " PT23 "; q:vec23 the point Q; r:vec23 the point R; "
+     "s:num the parameter along Q - P; t:num the parameter along R - P",
+     "point:vec g(s,t), as long as p; in_parallelogram:bool s and t in [0,1]", NULL, f_plane_point,
+     "p=0,0,0 q=1,0,0 r=0,1,0 s=0.5 t=2"},
     {"basis-coordinates", "2.3", "coordinates c of v in a basis: v = sum c_i b_i (n vectors of R^n)",
-     "basis:vecs; v:vec", "coords:vec; orthogonal:bool; orthonormal:bool", NULL, f_basis_coordinates},
+     "basis:vecs234 the basis vectors b_1 ... b_n, n of them, each of n numbers; "
+     "v:vec234 the vector, as long as the basis vectors",
+     "coords:vec the coordinates c_i; orthogonal:bool the basis vectors are pairwise orthogonal; "
+     "orthonormal:bool orthogonal and of length 1", NULL, f_basis_coordinates, "basis=1,1;1,-1 v=3,1"},
     {"barycentric", "2.4", "barycentric coordinates as ratios of oriented areas (measured along the "
      "triangle normal); inside iff all >= 0",
-     "p1:vec; p2:vec; p3:vec; q:vec", "l1:num; l2:num; l3:num; inside:bool", NULL, f_barycentric},
-    {NULL, NULL, NULL, NULL, NULL, NULL, NULL},
+     "p1:vec23 the first corner " PT23 "; p2:vec23 the second corner; p3:vec23 the third corner; "
+     "q:vec23 the point",
+     "l1:num the weight of p1; l2:num the weight of p2; l3:num the weight of p3; "
+     "inside:bool all weights >= 0 (q in the triangle, edges included)", NULL, f_barycentric,
+     "p1=0,0 p2=4,0 p3=0,4 q=1,1"},
+    {NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL},
 };

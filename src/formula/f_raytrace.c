@@ -20,13 +20,13 @@ static void out_rgb(RfFormulaCall *c, const char *name, RfRgb v)
 static int in_rgb(RfFormulaCall *c, const char *name, RfRgb *v)
 {
     double a[3];
-    if (rf_in_vec(c, name, 3, a, NULL))
+    if (rf_in_vec(c, name, 0, a, NULL))
         return 1;
     *v = rf_rgb(a[0], a[1], a[2]);
     return 0;
 }
 
-/* A 3D vector normalised here; a zero vector is an error (FORMULAS.md: errors). */
+/* A 3D vector normalised here; a zero vector is an error. */
 static int in_unit(RfFormulaCall *c, const char *name, RfVec3 *v)
 {
     if (rf_in_vec3(c, name, v))
@@ -112,7 +112,7 @@ static int f_primary_ray(RfFormulaCall *c)
     if (rf_in_has(c, "fov_deg")) {
         double fov;
         if (edges)
-            return rf_call_error(c, "give either fov_deg or l, r, b, t, not both");
+            return rf_call_bad_input(c, "give either fov_deg or l, r, b, t, not both");
         if (rf_in_angle(c, "fov_deg", &fov))
             return 1;
         if (!(fov > 0.0 && fov < RF_PI))
@@ -120,7 +120,7 @@ static int f_primary_ray(RfFormulaCall *c)
         st = rf_camera_init_fov(&cam, eye, target, up, d, fov, (int)nx, (int)ny);
     } else {
         if (edges != 4)
-            return rf_call_error(c, "give fov_deg (vertical) or all of l, r, b, t");
+            return rf_call_bad_input(c, "give fov_deg (vertical) or all of l, r, b, t");
         for (int k = 0; k < 4; k++)
             if (rf_in_num(c, edge[k], &e[k]))
                 return 1;
@@ -151,7 +151,7 @@ static int f_intersect_sphere(RfFormulaCall *c)
     RfHit hit;
     int variant;
     if (in_ray(c, &ray) || rf_in_vec3(c, "center", &s.center) || in_positive(c, "radius", &s.radius) ||
-        rf_in_choice(c, "variant", "script|stable", &variant))
+        rf_in_choice(c, "variant", &variant))
         return 1;
     RfSphereMethod m = variant ? RF_SPHERE_STABLE : RF_SPHERE_SCRIPT;
     RfSphereQuadratic q = rf_sphere_quadratic(ray, s, m);
@@ -197,7 +197,7 @@ static int f_intersect_triangle(RfFormulaCall *c)
     RfHit hit;
     int variant;
     if (in_ray(c, &ray) || rf_in_vec3(c, "p1", &tri.p1) || rf_in_vec3(c, "p2", &tri.p2) ||
-        rf_in_vec3(c, "p3", &tri.p3) || rf_in_choice(c, "variant", "script|moller|watertight", &variant))
+        rf_in_vec3(c, "p3", &tri.p3) || rf_in_choice(c, "variant", &variant))
         return 1;
     RfVec3 n = rf_vec3_cross(rf_vec3_sub(tri.p2, tri.p1), rf_vec3_sub(tri.p3, tri.p1));
     if (!(rf_vec3_length(n) > 0.0))
@@ -231,7 +231,7 @@ static int intersect_cone(RfFormulaCall *c, int cylinder)
     else if (rf_in_num(c, "apex_radius", &k.apex_radius))
         return 1;
     if (cylinder && k.apex_radius != k.base_radius)
-        return rf_call_error(c, "a cylinder has apex_radius = base_radius (use intersect-cone)");
+        return rf_call_bad_input(c, "a cylinder has apex_radius = base_radius (use intersect-cone)");
     if (!(k.base_radius >= 0.0 && k.apex_radius >= 0.0) || (k.base_radius == 0.0 && k.apex_radius == 0.0))
         return rf_call_error(c, "the radii must be >= 0 and not both 0 (NFF's negative pair means "
                                 "inside-only visibility: give the absolute values)");
@@ -270,7 +270,7 @@ static int f_reflect(RfFormulaCall *c)
     RfVec3 n, x;
     int has_l = rf_in_has(c, "l"), has_d = rf_in_has(c, "dir");
     if (has_l == has_d)
-        return rf_call_error(c, "give exactly one of l (towards the light) and dir (a travelling ray)");
+        return rf_call_bad_input(c, "give exactly one of l (towards the light) and dir (a travelling ray)");
     if (in_unit(c, "n", &n) || rf_in_vec3(c, has_l ? "l" : "dir", &x))
         return 1;
     rf_out_vec3(c, "r", has_l ? rf_reflect(n, x) : rf_reflect_dir(x, n));
@@ -319,7 +319,7 @@ static void out_light(RfFormulaCall *c, const RfLightSample *s)
 static int in_falloff(RfFormulaCall *c, RfFalloff *f)
 {
     int k;
-    if (rf_in_choice(c, "falloff", "inverse-square|none", &k))
+    if (rf_in_choice(c, "falloff", &k))
         return 1;
     *f = k ? RF_FALLOFF_NONE : RF_FALLOFF_INVERSE_SQUARE;
     return 0;
@@ -431,7 +431,7 @@ static int f_fresnel(RfFormulaCall *c)
     double ei, et, ci;
     int variant;
     if (in_etas(c, &ei, &et) || rf_in_num(c, "cos_i", &ci) ||
-        rf_in_choice(c, "variant", "exact|schlick", &variant))
+        rf_in_choice(c, "variant", &variant))
         return 1;
     if (!(ci >= 0.0 && ci <= 1.0))
         return rf_call_error(c, "cos_i must lie in [0, 1]");
@@ -478,93 +478,156 @@ static int f_thin_lens(RfFormulaCall *c)
 }
 
 #define ERR_34 "the script's u = up x w must be normalised when up is not perpendicular to w"
-#define CONE_IN "origin:vec; dir:vec; base:vec; base_radius:num; apex:vec; "
-#define HIT_OUT "t:num; hit:bool; point:vec; normal:vec"
+#define RAY_IN "origin:vec3 the ray's origin e; dir:vec3 the ray's direction d (not normalised: t " \
+               "counts in units of |d|), not zero; "
+#define CONE_IN RAY_IN "base:vec3 the centre of the base circle; base_radius:num the radius at the base (>= 0); " \
+                "apex:vec3 the centre of the apex circle (not the base); "
+#define HIT_OUT "t:num the ray parameter of the nearest hit with t >= 0 (null without a hit); " \
+                "hit:bool the ray hits; point:vec the hit point e + t d (null without a hit); " \
+                "normal:vec the unit normal at the hit (null without a hit)"
+#define CAMERA_IN "eye:vec3 the eye position e; target:vec3 the point looked at; up:vec3 the up " \
+                  "direction (not parallel to the view direction)"
+#define LIGHT_OUT "i:rgb the light's intensity arriving at the point; l:vec the unit vector from " \
+                  "the point towards the light; distance:num the distance to the light (null: infinitely far)"
+#define FALLOFF_IN "falloff:inverse-square|none=inverse-square inverse-square: I/d^2, none: I (NFF)"
+#define ETA_IN "eta_i:num the index of refraction on the incident side (> 0); eta_t:num the index " \
+               "on the transmitted side (> 0)"
 
 const RfFormula rf_formulas_raytrace[] = {
     {"nyquist", "3.1", "Nyquist-Shannon: a signal with maximal frequency f_max must be sampled at a rate "
-     "strictly greater than min_rate = 2 f_max; aliasing when f_sample <= 2 f_max; nyquist_frequency = f_sample/2", "f_max:num; f_sample:num",
-     "min_rate:num; aliasing:bool; nyquist_frequency:num", NULL, f_nyquist},
-    {"camera-basis", "3.4", "w = (e - target)/|e - target|, u = normalise(up x w), v = w x u",
-     "eye:vec; target:vec; up:vec", "u:vec; v:vec; w:vec", ERR_34, f_camera_basis},
+     "strictly greater than min_rate = 2 f_max; aliasing when f_sample <= 2 f_max; nyquist_frequency = f_sample/2",
+     "f_max:num the signal's highest frequency (>= 0); f_sample:num the sampling rate (> 0, same unit)",
+     "min_rate:num 2 f_max (the rate must exceed it); aliasing:bool f_sample <= 2 f_max; "
+     "nyquist_frequency:num f_sample/2, the highest frequency the rate can represent",
+     NULL, f_nyquist, "f_max=20 f_sample=44.1"},
+    {"camera-basis", "3.4", "w = (e - target)/|e - target|, u = normalise(up x w), v = w x u", CAMERA_IN,
+     "u:vec the camera's right axis; v:vec its up axis; w:vec its backward axis (from target to eye)",
+     ERR_34, f_camera_basis, "eye=0,0,5 target=0,0,0 up=0,1,0"},
     {"primary-ray", "3.4", "s = l1 u + l2 v - d w with l1 = l + (r-l)(i+sx)/nx, l2 = t - (t-b)(j+sy)/ny "
      "(row j = 0 at the top); fov_deg (vertical, edge to edge) gives t = d tan(fov/2), r = t nx/ny, "
      "l = -r, b = -t; give fov_deg or l, r, b, t. origin is the eye, s is relative to the eye, direction = s/|s|",
-     "eye:vec; target:vec; up:vec; d:num=1; fov_deg:num?; l:num?; r:num?; b:num?; t:num?; nx:int; "
-     "ny:int; i:int; j:int; sx:num=0.5; sy:num=0.5",
-     "origin:vec; s:vec; direction:vec; l:num; r:num; b:num; t:num",
-     ERR_34, f_primary_ray},
+     CAMERA_IN "; d:num=1 the distance of the image plane from the eye (> 0); "
+     "fov_deg:num? the vertical field of view, edge to edge, in (0,180) (degrees, or give l, r, b, t); "
+     "l:num? the image plane's left edge; r:num? its right edge; b:num? its bottom edge; t:num? its top edge; "
+     "nx:int the image width in pixels; ny:int the image height in pixels; i:int the pixel column, 0..nx-1; "
+     "j:int the pixel row, 0..ny-1, 0 at the top; sx:num=0.5 the sample's position across the pixel, 0..1; "
+     "sy:num=0.5 the sample's position down the pixel, 0..1",
+     "origin:vec the ray's origin (the eye); s:vec the image-plane point relative to the eye; "
+     "direction:vec the unit direction s/|s|; l:num the left edge used; r:num the right edge used; "
+     "b:num the bottom edge used; t:num the top edge used",
+     ERR_34, f_primary_ray, "eye=0,0,5 target=0,0,0 up=0,1,0 fov_deg=90 nx=4 ny=2 i=0 j=0"},
     {"intersect-sphere", "3.5.1", "a = <d,d>, b = 2<d,e-c>, c = <e-c,e-c> - r^2, D = b^2 - 4ac; D < 0 none, "
      "D = 0 one (tangent), roots < 0 behind the origin; t = the smallest root >= 0. variant=stable: "
      "the same roots computed precisely (D = 4a(r-|v|)(r+|v|), v = f - (<f,d>/a) d; c compensated; "
      "q = -(b + sign(b) sqrt(D))/2, roots q/a and c/q). t1 <= t2 (null when D < 0); t, point and the outward unit normal are null without a hit",
-     "origin:vec; dir:vec; center:vec; radius:num; variant:str=script",
-     "a:num; b:num; c:num; disc:num; t1:num; t2:num; " HIT_OUT, NULL,
-     f_intersect_sphere},
+     RAY_IN "center:vec3 the sphere's centre c; radius:num its radius r (> 0); "
+     "variant:script|stable=script script: the midnight formula as written, stable: the same roots, rounded less",
+     "a:num the quadratic's a = <d,d>; b:num its b; c:num its c; disc:num the discriminant D; "
+     "t1:num the smaller root (null when D < 0); t2:num the larger root (null when D < 0); " HIT_OUT, NULL,
+     f_intersect_sphere, "origin=0,0,5 dir=0,0,-1 center=0,0,0 radius=1"},
     {"intersect-plane", "3.5.2", "Hesse form <x,n> = offset: t = (offset - <e,n>)/<d,n>; parallel when "
      "<d,n> = 0; t < 0 is behind the origin (no hit). t_line is the t of the whole line (null when parallel); t, point, normal (unit) are null without a hit",
-     "origin:vec; dir:vec; normal:vec; offset:num",
-     HIT_OUT "; parallel:bool; t_line:num",
+     RAY_IN "normal:vec3 the plane's normal n (not zero, need not be unit); offset:num the plane's offset: <x,n> = offset",
+     HIT_OUT "; parallel:bool the ray is parallel to the plane; t_line:num the t where the whole line "
+     "meets the plane, also behind the origin (null when parallel)",
      "the script requires a, b, c != 0 (correct: (a,b,c) != 0) and uses d for both the ray direction "
-     "and the plane offset; kept apart here", f_intersect_plane},
+     "and the plane offset; kept apart here", f_intersect_plane, "origin=0,1,0 dir=0,-1,0 normal=0,1,0 offset=-1"},
     {"intersect-triangle", "3.5.3", "two-sided ray/triangle hit with t >= 0 and barycentric l1, l2, l3 >= 0. "
      "variant=script: the plane, then barycentric coordinates; moller: Moller-Trumbore; watertight: "
      "Woop, Benthin, Wald 2013 with exact edge signs (no ray passes between two triangles). normal: the unit (p2-p1) x (p3-p1); t, point, normal, l1..l3 are null without a hit",
-     "origin:vec; dir:vec; p1:vec; p2:vec; p3:vec; variant:str=script",
-     HIT_OUT "; l1:num; l2:num; l3:num", NULL,
-     f_intersect_triangle},
+     RAY_IN "p1:vec3 the first corner; p2:vec3 the second corner; p3:vec3 the third corner; "
+     "variant:script|moller|watertight=script the algorithm",
+     HIT_OUT "; l1:num the barycentric weight of p1 (null without a hit); l2:num the weight of p2; "
+     "l3:num the weight of p3", NULL, f_intersect_triangle,
+     "origin=0.25,0.25,1 dir=0,0,-1 p1=0,0,0 p2=1,0,0 p3=0,1,0"},
     {"intersect-cylinder", "NFF", "open cylinder (NFF c, no caps) between base and apex; the nearest "
      "hit with t >= 0, from outside or inside; apex_radius may be omitted (it equals base_radius); the normal "
      "is the outward unit normal; null without a hit",
-     CONE_IN "apex_radius:num?", HIT_OUT, NULL, f_intersect_cylinder},
+     CONE_IN "apex_radius:num? the radius at the apex, equal to base_radius (may be omitted)", HIT_OUT,
+     NULL, f_intersect_cylinder, "origin=5,0,0.5 dir=-1,0,0 base=0,0,0 base_radius=1 apex=0,0,1"},
     {"intersect-cone", "NFF", "open cone (NFF c, no caps) between base and apex with radii base_radius, "
      "apex_radius; the nearest hit with t >= 0, from outside or inside; the normal is the outward unit "
      "normal; null without a hit",
-     CONE_IN "apex_radius:num", HIT_OUT, NULL, f_intersect_cone},
+     CONE_IN "apex_radius:num the radius at the apex (>= 0, not both radii 0)", HIT_OUT, NULL,
+     f_intersect_cone, "origin=5,0,0.5 dir=-1,0,0 base=0,0,0 base_radius=1 apex=0,0,1 apex_radius=0"},
     {"phong", "3.6.2", "I = ka I_L + kd I_L <N,L> + ks I_L <R_L,V>^n per channel; N, L, V normalised here, "
      "L and V point away from the surface; negative scalar products count as 0; no highlight when "
-     "<N,L> <= 0", "n:vec; l:vec; v:vec; ka:vec; kd:vec; ks:vec; shininess:num; light:vec=1,1,1",
-     "ambient:vec; diffuse:vec; specular:vec; total:vec; r_l:vec; n_dot_l:num; r_dot_v:num",
-     "the script writes R_L = 2N<N,L>L; correct: R_L = 2N<N,L> - L", f_phong},
+     "<N,L> <= 0",
+     "n:vec3 the surface normal N (normalised here); l:vec3 the direction from the surface to the light L; "
+     "v:vec3 the direction from the surface to the viewer V; ka:rgb the ambient coefficient; "
+     "kd:rgb the diffuse coefficient; ks:rgb the specular coefficient; shininess:num the exponent n (>= 0); "
+     "light:rgb=1,1,1 the light's intensity I_L",
+     "ambient:rgb ka I_L; diffuse:rgb kd I_L <N,L>; specular:rgb ks I_L <R_L,V>^n; "
+     "total:rgb the sum; r_l:vec the reflected light direction R_L = 2N<N,L> - L; "
+     "n_dot_l:num <N,L>; r_dot_v:num <R_L,V>",
+     "the script writes R_L = 2N<N,L>L; correct: R_L = 2N<N,L> - L", f_phong,
+     "n=0,0,1 l=0,1,1 v=0,0,1 ka=0.1 kd=0.6 ks=0.3 shininess=10"},
     {"reflect", "3.6.2, 3.8", "R = 2N<N,L> - L for l (towards the light), or D - 2<D,N>N for a travelling "
-     "ray dir; n normalised here", "n:vec; l:vec?; dir:vec?", "r:vec",
-     "the script writes R_L = 2N<N,L>L; correct: R_L = 2N<N,L> - L", f_reflect},
+     "ray dir; n normalised here",
+     "n:vec3 the surface normal N (normalised here); l:vec3? the direction towards the light L "
+     "(give l or dir); dir:vec3? the direction D of a ray travelling into the surface",
+     "r:vec the reflected direction", "the script writes R_L = 2N<N,L>L; correct: R_L = 2N<N,L> - L",
+     f_reflect, "n=0,1,0 dir=1,-1,0"},
     {"vertex-normal", "3.6.3", "n = normalise(sum (b-a) x (c-a)) over the faces around the vertex "
      "(area-weighted; normalised, not divided by the count). faces: the triangles around the "
      "vertex, [[a,b,c], ...] (at most 64)",
-     "faces:tris", "n:vec", NULL, f_vertex_normal},
+     "faces:tris the triangles around the vertex, each [a,b,c] counter-clockwise (at most 64)",
+     "n:vec the unit vertex normal", NULL, f_vertex_normal,
+     "faces=[[[0,0,0],[1,0,0],[0,1,0]],[[0,0,0],[0,1,0],[0,0,1]]]"},
     {"interpolate-normal", "3.6.3", "Phong shading: n = normalise(l1 n1 + l2 n2 + l3 n3)",
-     "n1:vec; n2:vec; n3:vec; l1:num; l2:num; l3:num", "n:vec", NULL, f_interpolate_normal},
+     "n1:vec3 the normal at the first corner; n2:vec3 at the second; n3:vec3 at the third; "
+     "l1:num the barycentric weight of corner 1; l2:num of corner 2; l3:num of corner 3",
+     "n:vec the unit interpolated normal", NULL, f_interpolate_normal,
+     "n1=0,0,1 n2=0,1,0 n3=1,0,0 l1=0.5 l2=0.25 l3=0.25"},
     {"light-point", "3.7", "point light: i = I/d^2 (falloff=none: I, the NFF convention), l towards the light",
-     "intensity:vec; light_pos:vec; point:vec; falloff:str=inverse-square",
-     "i:vec; l:vec; distance:num", NULL, f_light_point},
+     "intensity:rgb the light's intensity I; light_pos:vec3 the light's position; "
+     "point:vec3 the lit point; " FALLOFF_IN, LIGHT_OUT, NULL, f_light_point,
+     "intensity=100 light_pos=0,10,0 point=0,0,0"},
     {"light-directional", "3.7", "parallel light: i = irradiance everywhere, l = -direction normalised "
-     "(direction = where the light travels); distance is null (infinitely far)", "irradiance:vec; direction:vec",
-     "i:vec; l:vec; distance:num", NULL, f_light_directional},
+     "(direction = where the light travels); distance is null (infinitely far)",
+     "irradiance:rgb the light's irradiance; direction:vec3 the direction the light travels (not zero)",
+     LIGHT_OUT, NULL, f_light_directional, "irradiance=1 direction=0,-1,-1"},
     {"light-spot", "3.7", "spot light: i = I cos^n(theta)/d^2 for theta <= cutoff, else 0; theta = angle "
      "between the axis and the direction from the light to the point",
-     "intensity:vec; light_pos:vec; axis:vec; exponent:num; cutoff_deg:num; point:vec; "
-     "falloff:str=inverse-square", "i:vec; l:vec; distance:num; theta_deg:num", NULL, f_light_spot},
-    {"ior", "3.8.1", "index of refraction eta = c0/c_medium, c0 = 299792458 m/s", "c_medium:num",
-     "eta:num", NULL, f_ior},
+     "intensity:rgb the light's intensity I; light_pos:vec3 the light's position; "
+     "axis:vec3 the direction the spot points to (not zero); exponent:num the fall-off exponent n (>= 0); "
+     "cutoff_deg:num the cone's half angle, 0..90 (degrees); point:vec3 the lit point; " FALLOFF_IN,
+     LIGHT_OUT "; theta_deg:num the angle between the axis and the direction to the point (degrees)",
+     NULL, f_light_spot, "intensity=100 light_pos=0,10,0 axis=0,-1,0 exponent=2 cutoff_deg=30 point=1,0,0"},
+    {"ior", "3.8.1", "index of refraction eta = c0/c_medium, c0 = 299792458 m/s",
+     "c_medium:num the speed of light in the medium (m/s, > 0)", "eta:num the index of refraction", NULL,
+     f_ior, "c_medium=225000000"},
     {"snell", "3.8.1", "eta_i sin(theta_i) = eta_t sin(theta_t); total internal reflection only beyond the "
-     "critical angle (at it theta_t = 90); theta_t_deg is null under TIR, critical_deg null when eta_i <= eta_t", "eta_i:num; eta_t:num; theta_i_deg:num",
-     "theta_t_deg:num; tir:bool; critical_deg:num", NULL,
-     f_snell},
+     "critical angle (at it theta_t = 90); theta_t_deg is null under TIR, critical_deg null when eta_i <= eta_t",
+     ETA_IN "; theta_i_deg:num the angle of incidence to the normal, 0..90 (degrees)",
+     "theta_t_deg:num the angle of refraction (degrees, null under total internal reflection); "
+     "tir:bool total internal reflection; critical_deg:num the critical angle (degrees, null when eta_i <= eta_t)",
+     NULL, f_snell, "eta_i=1 eta_t=1.5 theta_i_deg=30"},
     {"refract", "3.8.1", "T = -(eta_i/eta_t) I + ((eta_i/eta_t) cos_i - sqrt(1 - (eta_i/eta_t)^2 "
      "(1 - cos_i^2))) N, cos_i = <I,N>; I (normalised here) points back to where the ray came from, on "
-     "the side of N; t is null under total internal reflection", "i:vec; n:vec; eta_i:num; eta_t:num",
-     "t:vec; tir:bool; cos_i:num", NULL, f_refract},
+     "the side of N; t is null under total internal reflection",
+     "i:vec3 the direction back to where the ray came from, I (normalised here, <I,N> >= 0); "
+     "n:vec3 the surface normal N on the incident side (normalised here); " ETA_IN,
+     "t:vec the unit refracted direction T (null under total internal reflection); "
+     "tir:bool total internal reflection; cos_i:num cos(theta_i) = <I,N>", NULL, f_refract,
+     "i=0,1,1 n=0,1,0 eta_i=1 eta_t=1.5"},
     {"fresnel", "3.8.1", "exact dielectric Fresnel reflectance (unpolarised mean of rs, rp, the squared "
      "amplitude ratios) or variant=schlick; r = 1 under total internal reflection, t = 1 - r; rs and rp are null for schlick",
-     "eta_i:num; eta_t:num; cos_i:num; variant:str=exact",
-     "r:num; t:num; rs:num; rp:num; tir:bool", NULL, f_fresnel},
+     ETA_IN "; cos_i:num cos(theta_i) of the angle of incidence, 0..1; "
+     "variant:exact|schlick=exact exact: Fresnel's equations, schlick: Schlick's approximation",
+     "r:num the reflectance; t:num the transmittance 1 - r; rs:num the s-polarised reflectance (null for schlick); "
+     "rp:num the p-polarised reflectance (null for schlick); tir:bool total internal reflection", NULL,
+     f_fresnel, "eta_i=1 eta_t=1.5 cos_i=0.5"},
     {"dispersion", "beyond", "Cauchy: eta = A + B/lambda^2 with lambda in micrometres",
-     "lambda_nm:num; a:num; b:num", "eta:num", NULL, f_dispersion},
+     "lambda_nm:num the wavelength (nm, > 0); a:num Cauchy's A; b:num Cauchy's B (micrometres^2)",
+     "eta:num the index of refraction", NULL, f_dispersion, "lambda_nm=589.3 a=1.5046 b=0.0042"},
     {"thin-lens", "3.10", "camera space (eye at 0, looking along -z): the ray from the lens point "
      "aperture_radius (lens_u, lens_v, 0) to where the pinhole ray along pixel_direction meets the "
      "focal plane z = -focal_distance",
-     "lens_u:num; lens_v:num; aperture_radius:num; focal_distance:num; pixel_direction:vec",
-     "origin:vec; direction:vec", NULL, f_thin_lens},
-    {NULL, NULL, NULL, NULL, NULL, NULL, NULL},
+     "lens_u:num the lens sample's x in the unit disk; lens_v:num its y (lens_u^2 + lens_v^2 <= 1); "
+     "aperture_radius:num the lens radius (>= 0); focal_distance:num the distance of the plane in focus (> 0); "
+     "pixel_direction:vec3 the pinhole ray's direction in camera space (z < 0)",
+     "origin:vec the ray's origin on the lens; direction:vec the ray's unit direction", NULL, f_thin_lens,
+     "lens_u=0.5 lens_v=0 aperture_radius=0.1 focal_distance=2 pixel_direction=0,0,-1"},
+    {NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL},
 };

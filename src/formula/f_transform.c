@@ -17,7 +17,7 @@ static int apply_to_point(RfFormulaCall *c, const double *m, int n)
     int d;
     if (!rf_in_has(c, "point"))
         return 0;
-    if (rf_in_vec(c, "point", 0, p, &d))
+    if (rf_in_vec(c, "point", RF_DIM(n - 1) | RF_DIM(n), p, &d))
         return 1;
     if (d == n) {
         rf_matn_mul_vec(n, m, p, y);
@@ -30,9 +30,6 @@ static int apply_to_point(RfFormulaCall *c, const double *m, int n)
         for (int i = 0; i < d; i++)
             y[i] /= y[d];
         rf_out_vec(c, "point", y, d);
-    } else {
-        return rf_call_error(c, "the point must have %d or %d components for a %dx%d matrix",
-                             n - 1, n, n, n);
     }
     return 0;
 }
@@ -43,10 +40,10 @@ static int out_matrix_and_point(RfFormulaCall *c, const double *m, int n)
     return apply_to_point(c, m, n);
 }
 
-static int read_axis(RfFormulaCall *c, const char *choices, RfAxis *axis)
+static int read_axis(RfFormulaCall *c, RfAxis *axis)
 {
     int i;
-    if (rf_in_choice(c, "axis", choices, &i))
+    if (rf_in_choice(c, "axis", &i))
         return 1;
     *axis = (RfAxis)i;
     return 0;
@@ -65,7 +62,7 @@ static int f_shear2(RfFormulaCall *c)
 {
     RfAxis axis;
     double s;
-    if (read_axis(c, "x|y", &axis) || rf_in_num(c, "s", &s))
+    if (read_axis(c, &axis) || rf_in_num(c, "s", &s))
         return 1;
     RfMat2 m = rf_mat2_shear(axis, s);
     return out_matrix_and_point(c, &m.m[0][0], 2);
@@ -74,7 +71,7 @@ static int f_shear2(RfFormulaCall *c)
 static int f_reflect2(RfFormulaCall *c)
 {
     RfAxis axis;
-    if (read_axis(c, "x|y", &axis))
+    if (read_axis(c, &axis))
         return 1;
     RfMat2 m = rf_mat2_reflect(axis);
     return out_matrix_and_point(c, &m.m[0][0], 2);
@@ -93,7 +90,7 @@ static int f_rotate3(RfFormulaCall *c)
 {
     RfAxis axis;
     double phi;
-    if (read_axis(c, "x|y|z", &axis) || rf_in_angle(c, "phi_deg", &phi))
+    if (read_axis(c, &axis) || rf_in_angle(c, "phi_deg", &phi))
         return 1;
     RfMat3 m = rf_mat3_rotate(axis, phi);
     return out_matrix_and_point(c, &m.m[0][0], 3);
@@ -104,7 +101,7 @@ static int f_euler(RfFormulaCall *c)
     double psi, theta, phi;
     int order;
     if (rf_in_angle(c, "psi_deg", &psi) || rf_in_angle(c, "theta_deg", &theta) ||
-        rf_in_angle(c, "phi_deg", &phi) || rf_in_choice(c, "order", "zyx|xyz|zxz|zyz", &order))
+        rf_in_angle(c, "phi_deg", &phi) || rf_in_choice(c, "order", &order))
         return 1;
     RfMat3 m = rf_mat3_euler((RfEulerOrder)order, psi, theta, phi);
     return out_matrix_and_point(c, &m.m[0][0], 3);
@@ -142,7 +139,7 @@ static int f_inverse(RfFormulaCall *c)
     double m[16], inv[16];
     int n = 0, kind;
     if (rf_in_mat(c, "matrix", 0, m, &n) ||
-        rf_in_choice(c, "kind", "general|scale|rotation|translation", &kind))
+        rf_in_choice(c, "kind", &kind))
         return 1;
     int homogeneous = 1; /* the last row is (0,...,0,1) */
     for (int k = 0; k < n; k++)
@@ -201,7 +198,7 @@ static int f_homogeneous(RfFormulaCall *c)
     double v[4] = {0, 0, 0, 0}, h[4], w;
     int n = 0, point = rf_in_has(c, "point"), dir = rf_in_has(c, "direction"), hom = rf_in_has(c, "h");
     if (point + dir + hom != 1)
-        return rf_call_error(c, "give exactly one of point, direction or h");
+        return rf_call_bad_input(c, "give exactly one of point, direction or h");
     if (hom) { /* dehomogenise a given homogeneous vector */
         if (rf_in_vec(c, "h", 0, h, &n))
             return 1;
@@ -218,8 +215,6 @@ static int f_homogeneous(RfFormulaCall *c)
     }
     if (rf_in_vec(c, point ? "point" : "direction", 0, v, &n) || rf_in_num(c, "w", &w))
         return 1;
-    if (n == 4)
-        return rf_call_error(c, "a point or direction must be 2D or 3D");
     if (point && w == 0.0)
         return rf_call_error(c, "a point needs w != 0 (w = 0 is a direction)");
     /* a point: the representative (w x, w y, w) of its class; a direction: (x, y, 0) */
@@ -239,10 +234,9 @@ static int f_affine(RfFormulaCall *c)
 {
     double a[16], b[4], x[4], y[4], h[25];
     int n = 0, nb, nx;
-    if (rf_in_mat(c, "a", 0, a, &n) || rf_in_vec(c, "b", 0, b, &nb) || rf_in_vec(c, "x", 0, x, &nx))
+    if (rf_in_mat(c, "a", 0, a, &n) || rf_in_vec(c, "b", RF_DIM(n), b, &nb) ||
+        rf_in_vec(c, "x", RF_DIM(n), x, &nx))
         return 1;
-    if (n > 3 || nb != n || nx != n)
-        return rf_call_error(c, "a must be 2x2 or 3x3, and b and x of the same dimension");
     rf_matn_mul_vec(n, a, x, y);
     for (int i = 0; i < n; i++)
         y[i] += b[i];
@@ -256,7 +250,7 @@ static int f_rotate_about_point(RfFormulaCall *c)
 {
     double cp[4], phi;
     int n = 0;
-    if (rf_in_vec(c, "c", 2, cp, &n) || rf_in_angle(c, "phi_deg", &phi))
+    if (rf_in_vec(c, "c", 0, cp, &n) || rf_in_angle(c, "phi_deg", &phi))
         return 1;
     /* T(c) R(phi) T(-c) (Example 4.1) */
     RfMat2 r = rf_mat2_rotate(phi);
@@ -292,7 +286,7 @@ static int f_rotate3h(RfFormulaCall *c)
 {
     RfAxis axis;
     double phi;
-    if (read_axis(c, "x|y|z", &axis) || rf_in_angle(c, "phi_deg", &phi))
+    if (read_axis(c, &axis) || rf_in_angle(c, "phi_deg", &phi))
         return 1;
     RfMat4 m = rf_mat4_rotate(axis, phi);
     return out_matrix_and_point(c, &m.m[0][0], 4);
@@ -315,12 +309,11 @@ static int f_change_of_basis(RfFormulaCall *c)
     double e[4], basis[16], p[4] = {0}, bm[16], bh[25], t[25], m[25], neg[4];
     double id[16];
     int n = 0, count, dim, np, dir;
-    if (rf_in_vec(c, "origin", 0, e, &n) || rf_in_vecs(c, "basis", 0, 4, basis, &count, &dim) ||
-        rf_in_vec(c, "point", 0, p, &np) ||
-        rf_in_choice(c, "direction", "to-world|to-local", &dir))
+    if (rf_in_vec(c, "origin", 0, e, &n) || rf_in_vecs(c, "basis", RF_DIM(n), 4, basis, &count, &dim) ||
+        rf_in_vec(c, "point", RF_DIM(n), p, &np) || rf_in_choice(c, "direction", &dir))
         return 1;
-    if (n > 3 || dim != n || count != n || np != n)
-        return rf_call_error(c, "origin, point and the %d basis vectors must all be 2D or all 3D", n);
+    if (count != n)
+        return rf_call_bad_input(c, "basis: a basis of R^%d needs %d vectors, not %d", n, n, count);
     for (int r = 0; r < n; r++)
         for (int k = 0; k < n; k++)
             bm[r * n + k] = basis[k * n + r]; /* columns are the basis vectors */
@@ -373,16 +366,13 @@ static int transform_vector(RfFormulaCall *c, double w)
 {
     double m[16], x[4] = {0, 0, 0, 0}, y[4];
     int n = 0, d;
-    if (rf_in_mat(c, "matrix", 0, m, &n) || rf_in_vec(c, "x", 0, x, &d))
+    if (rf_in_mat(c, "matrix", 0, m, &n) || rf_in_vec(c, "x", RF_DIM(n - 1) | RF_DIM(n), x, &d))
         return 1;
     if (d == n) {
         rf_matn_mul_vec(n, m, x, y);
         rf_out_vec(c, "y", y, n);
         return 0;
     }
-    if (d != n - 1)
-        return rf_call_error(c, "x must have %d (homogeneous) or %d components for a %dx%d matrix",
-                             n - 1, n, n, n);
     x[d] = w;
     rf_matn_mul_vec(n, m, x, y);
     if (w != 0.0) {
@@ -406,8 +396,6 @@ static int f_transform_normal(RfFormulaCall *c)
     RfVec3 nrm, out;
     if (rf_in_mat(c, "matrix", 0, m, &n) || rf_in_vec3(c, "n", &nrm))
         return 1;
-    if (n == 2)
-        return rf_call_error(c, "the matrix must be 3x3 (linear) or 4x4 (affine)");
     RfMat3 a;
     for (int r = 0; r < 3; r++)
         for (int k = 0; k < 3; k++)
@@ -430,71 +418,110 @@ static int f_transform_normal(RfFormulaCall *c)
     return 0;
 }
 
-#define POINT_NOTE "; point:vec?"
+#define POINT(kind, how) "; point:" kind "? a point to transform (optional): " how
+#define POINT2 POINT("vec2", "2 numbers")
+#define POINT3 POINT("vec3", "3 numbers")
+#define POINT_H2 POINT("vec23", "x,y (homogeneous, w = 1, dehomogenised after) or x,y,w")
+#define POINT_H3 POINT("vec34", "x,y,z (homogeneous, w = 1, dehomogenised after) or x,y,z,w")
+#define MAT_OUT "matrix:mat the matrix; point:vec the transformed point (only when point is given)"
+#define AXIS_IN "axis:x|y|z the axis of rotation"
+#define PHI_IN "phi_deg:num the rotation angle, counter-clockwise looking down the axis (degrees)"
+
 const RfFormula rf_formulas_transform[] = {
     {"scale2", "4.2.1", "2D scale [[sx,0],[0,sy]], optionally applied to a point",
-     "sx:num; sy:num" POINT_NOTE, "matrix:mat; point:vec", NULL, f_scale2},
+     "sx:num the factor along x; sy:num the factor along y" POINT2, MAT_OUT, NULL, f_scale2,
+     "sx=2 sy=3 point=1,1"},
     {"shear2", "4.2.2", "2D shear along axis x ([[1,s],[0,1]]) or y ([[1,0],[s,1]])",
-     "axis:str; s:num" POINT_NOTE, "matrix:mat; point:vec", NULL, f_shear2},
+     "axis:x|y x: x += s y, y: y += s x; s:num the shear factor" POINT2, MAT_OUT, NULL, f_shear2,
+     "axis=x s=0.5 point=1,2"},
     {"reflect2", "4.2.3", "2D reflection: axis x negates x ([[-1,0],[0,1]]), axis y negates y",
-     "axis:str" POINT_NOTE, "matrix:mat; point:vec", NULL, f_reflect2},
+     "axis:x|y the coordinate that is negated" POINT2, MAT_OUT, NULL, f_reflect2, "axis=x point=1,2"},
     {"rotate2", "4.2.4", "2D rotation [[cos,-sin],[sin,cos]] by phi",
-     "phi_deg:num" POINT_NOTE, "matrix:mat; point:vec", NULL, f_rotate2},
-    {"rotate3", "4.3.1", "R_x, R_y or R_z (axis=x|y|z) by phi",
-     "axis:str; phi_deg:num" POINT_NOTE, "matrix:mat; point:vec", NULL, f_rotate3},
+     "phi_deg:num the angle, counter-clockwise (degrees)" POINT2, MAT_OUT, NULL, f_rotate2,
+     "phi_deg=90 point=1,0"},
+    {"rotate3", "4.3.1", "R_x, R_y or R_z (axis=x|y|z) by phi", AXIS_IN "; " PHI_IN POINT3, MAT_OUT, NULL,
+     f_rotate3, "axis=z phi_deg=90 point=1,0,0"},
     {"euler", "4.3.1", "Euler rotation; order names the factors left to right: zyx = R_z(phi) "
      "R_y(theta) R_x(psi) (the script's matrix), xyz = R_x(psi) R_y(theta) R_z(phi), zxz = R_z(phi) "
      "R_x(theta) R_z(psi), zyz = R_z(phi) R_y(theta) R_z(psi)",
-     "psi_deg:num; theta_deg:num; phi_deg:num; order:str=zyx" POINT_NOTE, "matrix:mat; point:vec",
-     NULL, f_euler},
+     "psi_deg:num the first angle psi (degrees); theta_deg:num the second angle theta (degrees); "
+     "phi_deg:num the third angle phi (degrees); order:zyx|xyz|zxz|zyz=zyx the axes of the factors, "
+     "left to right" POINT3, MAT_OUT, NULL, f_euler, "psi_deg=90 theta_deg=0 phi_deg=90"},
     {"rotation-basis", "4.3.1", "R_uvw with rows u, v, w: maps u, v, w onto the axes; R_uvw^T maps back",
-     "u:vec; v:vec; w:vec", "matrix:mat; orthonormal:bool (and right-handed)",
-     "the script's last entry w_u is w_z", f_rotation_basis},
+     "u:vec3 the first basis vector (row 1); v:vec3 the second (row 2); w:vec3 the third (row 3)",
+     "matrix:mat R_uvw; orthonormal:bool u, v, w are orthonormal and right-handed (a rotation)",
+     "the script's last entry w_u is w_z", f_rotation_basis, "u=0,1,0 v=0,0,1 w=1,0,0"},
     {"axis-angle", "4.3.1", "rotation about axis d by phi: e = (0,-d_z,d_y)/sqrt(d_y^2+d_z^2), f = d x e, "
      "M = rows(d,e,f), R = M^-1 R_x(phi) M; d is normalised; for d_y = d_z = 0 the helper axis is y "
      "(e = normalise(y x d))",
-     "d:vec; phi_deg:num" POINT_NOTE, "matrix:mat; e:vec; f:vec; point:vec",
+     "d:vec3 the axis (not zero, normalised here); " PHI_IN POINT3,
+     "matrix:mat the rotation R; e:vec the helper axis e; f:vec the helper axis f = d x e; "
+     "point:vec the rotated point (only when point is given)",
      "the script writes e = (0, -d_z, dy) without the normalisation's condition: e is undefined for "
-     "d_y = d_z = 0; refray then uses the y axis as helper", f_axis_angle},
+     "d_y = d_z = 0; refray then uses the y axis as helper", f_axis_angle, "d=1,1,1 phi_deg=120 point=1,0,0"},
     {"inverse", "4.4", "inverse matrix: kind=scale (reciprocal factors), rotation (transpose), "
      "translation (negated offset), general (Gauss-Jordan with partial pivoting; singular is an error)",
-     "matrix:mat; kind:str=general", "inverse:mat; singular:bool; det:num", NULL, f_inverse},
+     "matrix:mat234 the matrix M; kind:general|scale|rotation|translation=general which inverse: "
+     "Gauss-Jordan, 1/factors of a diagonal M, the transpose of a rotation, or the negated offset of a translation",
+     "inverse:mat M^-1; singular:bool always false (a singular matrix is an error); det:num det M", NULL,
+     f_inverse, "matrix=1,2;3,4"},
     {"homogeneous", "4.5.1", "homogeneous coordinates: a point (x,y[,z]) -> (w x, w y[, w z], w), a "
      "direction -> (x,y[,z],0); or give h to dehomogenise",
-     "point:vec?; direction:vec?; h:vec?; w:num=1", "h:vec; dehomogenised:vec (null at infinity); "
-     "at_infinity:bool", NULL, f_homogeneous},
+     "point:vec23? a point (give one of point, direction, h); direction:vec23? a direction; "
+     "h:vec234? a homogeneous vector to dehomogenise; w:num=1 the weight w of the point's representative (not 0)",
+     "h:vec the homogeneous vector; dehomogenised:vec the Cartesian point (null at infinity); "
+     "at_infinity:bool the last component is 0 (a direction)", NULL, f_homogeneous, "point=1,2 w=2"},
     {"affine", "4.5.2", "affine map y = A x + b and its homogeneous matrix [[A, b], [0, 1]]",
-     "a:mat; b:vec; x:vec", "y:vec; matrix_h:mat",
+     "a:mat23 the linear part A (2x2 or 3x3); b:vec23 the offset b, as long as A is wide; "
+     "x:vec23 the point x, as long as b",
+     "y:vec A x + b; matrix_h:mat the homogeneous matrix [[A, b], [0, 1]]",
      "the script's first row reads a11 x1 + a21 x2 + b1 and \"b1 != 0 or 2 != 0\"; correct: "
-     "a11 x1 + a12 x2 + b1, and b2", f_affine},
+     "a11 x1 + a12 x2 + b1, and b2", f_affine, "a=1,2;3,4 b=5,6 x=1,1"},
     {"rotate-about-point", "4.5.2", "2D rotation by phi about the point c: T(c) R(phi) T(-c) (Example 4.1)",
-     "c:vec; phi_deg:num" POINT_NOTE, "matrix:mat; point:vec", NULL, f_rotate_about_point},
-    {"scale3h", "4.6", "homogeneous 3D scale", "sx:num; sy:num; sz:num" POINT_NOTE,
-     "matrix:mat; point:vec", NULL, f_scale3h},
-    {"shear3z", "4.6", "homogeneous 3D shear along z: x += dx z, y += dy z", "dx:num; dy:num" POINT_NOTE,
-     "matrix:mat; point:vec", NULL, f_shear3z},
-    {"rotate3h", "4.6", "homogeneous 3D rotation about axis x, y or z", "axis:str; phi_deg:num" POINT_NOTE,
-     "matrix:mat; point:vec", NULL, f_rotate3h},
-    {"translate3h", "4.6", "homogeneous 3D translation", "dx:num; dy:num; dz:num" POINT_NOTE,
-     "matrix:mat; point:vec", NULL, f_translate3h},
+     "c:vec2 the centre of rotation; phi_deg:num the angle, counter-clockwise (degrees)" POINT_H2,
+     MAT_OUT " (3x3, homogeneous)", NULL, f_rotate_about_point, "c=1,1 phi_deg=90 point=2,1"},
+    {"scale3h", "4.6", "homogeneous 3D scale", "sx:num the factor along x; sy:num along y; sz:num along z" POINT_H3,
+     MAT_OUT, NULL, f_scale3h, "sx=2 sy=3 sz=4 point=1,1,1"},
+    {"shear3z", "4.6", "homogeneous 3D shear along z: x += dx z, y += dy z",
+     "dx:num the shear of x per unit z; dy:num the shear of y per unit z" POINT_H3, MAT_OUT, NULL,
+     f_shear3z, "dx=0.5 dy=0 point=0,0,2"},
+    {"rotate3h", "4.6", "homogeneous 3D rotation about axis x, y or z", AXIS_IN "; " PHI_IN POINT_H3,
+     MAT_OUT, NULL, f_rotate3h, "axis=x phi_deg=90 point=0,1,0"},
+    {"translate3h", "4.6", "homogeneous 3D translation",
+     "dx:num the offset along x; dy:num along y; dz:num along z" POINT_H3, MAT_OUT, NULL, f_translate3h,
+     "dx=1 dy=2 dz=3 point=1,1,1"},
     {"change-of-basis", "4.7.1", "to-world: p = T(e) B p_local (B's columns the basis vectors); "
      "to-local: p_local = B^-1 T(-e) p (B^-1 = B^T for an orthonormal basis, as the script writes)",
-     "origin:vec; basis:vecs; point:vec; direction:str=to-world", "matrix:mat; point:vec",
-     "the script writes (p_u, p_u, 1); correct: (p_u, p_v, 1)", f_change_of_basis},
+     "origin:vec23 the local frame's origin e (2D or 3D); basis:vecs23 the local basis vectors, n of "
+     "them, each as long as origin; point:vec23 the point to convert, as long as origin; "
+     "direction:to-world|to-local=to-world local -> world, or world -> local",
+     "matrix:mat the homogeneous matrix; point:vec the converted point", 
+     "the script writes (p_u, p_u, 1); correct: (p_u, p_v, 1)", f_change_of_basis,
+     "origin=1,1 basis=0,1;-1,0 point=1,0"},
     {"camera-transform", "4.7.2", "camera basis w = (e-target)/|e-target|, u = normalise(up x w), v = w x u "
      "and the world-to-camera matrix R_uvw T(-e)",
-     "eye:vec; target:vec; up:vec", "u:vec; v:vec; w:vec; view:mat",
-     "the script's u = up x w must be normalised when up is not perpendicular to w", f_camera_transform},
+     "eye:vec3 the eye position e; target:vec3 the point looked at; up:vec3 the up direction "
+     "(not parallel to the view direction)",
+     "u:vec the camera's right axis; v:vec its up axis; w:vec its backward axis; "
+     "view:mat the world-to-camera matrix R_uvw T(-e) (4x4)",
+     "the script's u = up x w must be normalised when up is not perpendicular to w", f_camera_transform,
+     "eye=0,0,5 target=0,0,0 up=0,1,0"},
     {"transform-point", "4.5", "y = M (x, 1) dehomogenised (x of dimension n-1 for an n x n M), or y = M x "
-     "(x of dimension n)", "matrix:mat; x:vec", "y:vec; w:num (the w before dehomogenising)", NULL,
-     f_transform_point},
+     "(x of dimension n)",
+     "matrix:mat234 the matrix M (n x n); x:vec234 the point: n-1 numbers (homogeneous, w = 1) or n",
+     "y:vec the transformed point; w:num the w before dehomogenising (only for n-1 numbers)", NULL,
+     f_transform_point, "matrix=1,0,0,1;0,1,0,2;0,0,1,3;0,0,0,1 x=1,1,1"},
     {"transform-direction", "4.5", "y = M (x, 0): translations do not move directions",
-     "matrix:mat; x:vec", "y:vec; w:num", NULL, f_transform_direction},
+     "matrix:mat234 the matrix M (n x n); x:vec234 the direction: n-1 numbers (homogeneous, w = 0) or n",
+     "y:vec the transformed direction; w:num the w of M (x, 0) (only for n-1 numbers)", NULL,
+     f_transform_direction, "matrix=1,0,0,1;0,1,0,2;0,0,1,3;0,0,0,1 x=1,1,1"},
     {"transform-normal", "4.9", "n' = normalise((M^-1)^T n) for the linear part of M; also the shortcut "
      "normalise(M n), right only for similarity maps (rotation x uniform scale)",
-     "matrix:mat; n:vec", "n:vec; similarity:bool; orthogonal:bool; n_shortcut:vec",
+     "matrix:mat34 the matrix M: 3x3 linear, or 4x4 affine (last row 0,0,0,1); n:vec3 the normal (not zero)",
+     "n:vec the unit transformed normal; similarity:bool M's linear part is rotation x uniform scale; "
+     "orthogonal:bool M's linear part is orthogonal; n_shortcut:vec normalise(M n), right only for similarity maps",
      "the script says (M^-1)^T = lambda M for all similarity maps including \"scalings\": that holds "
      "only for rotation x uniform scale (lambda = 1/s^2); a non-uniform scale needs the inverse transpose",
-     f_transform_normal},
-    {NULL, NULL, NULL, NULL, NULL, NULL, NULL},
+     f_transform_normal, "matrix=2,0,0;0,1,0;0,0,1 n=1,1,0"},
+    {NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL},
 };

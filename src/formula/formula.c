@@ -10,15 +10,17 @@
 #include <string.h>
 #include <strings.h>
 
+#include "formula_internal.h"
 #include "refray/mat.h"
 
 struct RfFormulaCall {
     const RfFormula *formula;
     cJSON *in;
     cJSON *out;
-    cJSON *defaults; /* parsed defaults of the spec, built on demand */
+    cJSON *cache; /* parsed defaults, and string inputs read as numbers, built on demand */
     char error[512];
     int failed;
+    RfFormulaResult result; /* RF_FORMULA_FAILED or RF_FORMULA_BAD_INPUT once failed */
 };
 
 /* ---- registry ---- */
@@ -56,13 +58,6 @@ const RfFormula *rf_formula_find(const char *id)
 
 /* ---- specs ---- */
 
-/* One parsed item of a spec: "name:kind=default", "name:kind?" or "name:kind", optionally
- * followed by a note after a space ("unit:vec (null for the zero vector)"). */
-typedef struct {
-    char name[48], kind[16], def[160], note[200];
-    int has_def, optional;
-} SpecItem;
-
 static void copy_trimmed(char *dst, size_t cap, const char *s, const char *end)
 {
     while (s < end && *s == ' ')
@@ -76,8 +71,29 @@ static void copy_trimmed(char *dst, size_t cap, const char *s, const char *end)
     dst[n] = 0;
 }
 
+/* The lengths of a kind: "vec23" -> {2,3}; "rgb" -> {3}; "vec", "mat", "vecs" -> {2,3,4}. */
+static void kind_dims(RfFormulaItem *it)
+{
+    static const char *const bases[] = {"vecs", "vec", "mat"};
+    if (strcmp(it->kind, "rgb") == 0) {
+        it->dims = RF_DIM(3);
+        it->grey = 1;
+        return;
+    }
+    for (size_t b = 0; b < sizeof bases / sizeof bases[0]; b++) {
+        size_t n = strlen(bases[b]);
+        if (strncmp(it->kind, bases[b], n) != 0 || strspn(it->kind + n, "234") != strlen(it->kind + n))
+            continue;
+        for (const char *d = it->kind + n; *d; d++)
+            it->dims |= RF_DIM(*d - '0');
+        if (!it->dims)
+            it->dims = RF_DIM(2) | RF_DIM(3) | RF_DIM(4);
+        return;
+    }
+}
+
 /* Parses the item that starts at *p and advances *p past it; returns 0 at the end. */
-static int spec_next(const char **p, SpecItem *it)
+static int spec_next(const char **p, RfFormulaItem *it)
 {
     const char *s = *p;
     while (*s == ' ' || *s == ';')
@@ -111,10 +127,20 @@ static int spec_next(const char **p, SpecItem *it)
         it->optional = 1;
     }
     copy_trimmed(it->note, sizeof it->note, q, end);
+    kind_dims(it);
     return 1;
 }
 
-static int spec_find(const char *spec, const char *name, SpecItem *it)
+int rf_formula_item(const char *spec, int index, RfFormulaItem *item)
+{
+    const char *p = spec ? spec : "";
+    for (int i = 0; spec_next(&p, item); i++)
+        if (i == index)
+            return 1;
+    return 0;
+}
+
+static int spec_find(const char *spec, const char *name, RfFormulaItem *it)
 {
     const char *p = spec ? spec : "";
     while (spec_next(&p, it))
@@ -158,14 +184,19 @@ static void buf_put(TextBuf *b, const char *s, size_t n)
 
 static void buf_str(TextBuf *b, const char *s) { buf_put(b, s, strlen(s)); }
 
-static void print_number(TextBuf *b, double v)
+void rf_formula_number_text(double v, char *text, size_t cap)
 {
-    char text[40];
     for (int digits = 15; digits <= 17; digits++) {
-        snprintf(text, sizeof text, "%.*g", digits, v);
+        snprintf(text, cap, "%.*g", digits, v);
         if (strtod(text, NULL) == v)
             break;
     }
+}
+
+static void print_number(TextBuf *b, double v)
+{
+    char text[40];
+    rf_formula_number_text(v, text, sizeof text);
     buf_str(b, text);
 }
 
@@ -276,7 +307,7 @@ static cJSON *numbers_to_json(const char *s)
     return outer;
 }
 
-static cJSON *value_to_json(const char *s)
+cJSON *rf_formula_value_json(const char *s)
 {
     if (strcmp(s, "true") == 0)
         return cJSON_CreateTrue();
@@ -320,7 +351,7 @@ char *rf_formula_args_to_json(int argc, char **argv, char *err, size_t err_size)
             cJSON_Delete(obj);
             return NULL;
         }
-        cJSON *v = value_to_json(eq + 1);
+        cJSON *v = rf_formula_value_json(eq + 1);
         if (!v) {
             snprintf(err, err_size, "input '%s': cannot read '%s' (numbers must be finite decimals)",
                      key, eq + 1);
@@ -336,48 +367,83 @@ char *rf_formula_args_to_json(int argc, char **argv, char *err, size_t err_size)
 
 /* ---- calls ---- */
 
-int rf_call_error(RfFormulaCall *call, const char *fmt, ...)
+static int call_error(RfFormulaCall *call, RfFormulaResult result, const char *fmt, va_list ap)
 {
     if (!call->failed) { /* keep the first error: it is the cause */
-        va_list ap;
-        va_start(ap, fmt);
         vsnprintf(call->error, sizeof call->error, fmt, ap);
-        va_end(ap);
         call->failed = 1;
+        call->result = result;
     }
     return 1;
 }
 
-/* The JSON item of an input, its default when absent, or NULL (optional without default).
- * Sets an error for a missing required input or an input the formula does not take. */
-static const cJSON *input_item(RfFormulaCall *call, const char *name, int *err)
+int rf_call_error(RfFormulaCall *call, const char *fmt, ...)
 {
-    SpecItem it;
+    va_list ap;
+    va_start(ap, fmt);
+    call_error(call, RF_FORMULA_FAILED, fmt, ap);
+    va_end(ap);
+    return 1;
+}
+
+int rf_call_bad_input(RfFormulaCall *call, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    call_error(call, RF_FORMULA_BAD_INPUT, fmt, ap);
+    va_end(ap);
+    return 1;
+}
+
+/* Kinds made of numbers: their values may also be written as on the command line, as a
+ * string ("1,2;3,4"), in a batch file. */
+static int numeric_kind(const RfFormulaItem *it)
+{
+    return it->dims || strcmp(it->kind, "num") == 0 || strcmp(it->kind, "int") == 0 ||
+           strcmp(it->kind, "nums") == 0 || strcmp(it->kind, "tris") == 0;
+}
+
+/* A value kept for the call's lifetime under name (a default, or a string read as numbers). */
+static const cJSON *cached(RfFormulaCall *call, const char *name, const char *text)
+{
+    if (!call->cache)
+        call->cache = cJSON_CreateObject();
+    cJSON *d = cJSON_GetObjectItemCaseSensitive(call->cache, name);
+    if (!d && (d = rf_formula_value_json(text)) != NULL)
+        cJSON_AddItemToObject(call->cache, name, d);
+    return d;
+}
+
+/* The JSON item of an input, its default when absent, or NULL (optional without default, or
+ * an error: *err set). it receives the input's spec item. */
+static const cJSON *input_item(RfFormulaCall *call, const char *name, RfFormulaItem *it, int *err)
+{
     *err = 0;
-    if (!spec_find(call->formula->inputs, name, &it)) {
+    if (!spec_find(call->formula->inputs, name, it)) {
         *err = rf_call_error(call, "internal: input '%s' is not in the spec of %s", name,
                              call->formula->id);
         return NULL;
     }
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(call->in, name);
-    if (v && !cJSON_IsNull(v))
-        return v;
-    if (it.has_def) {
-        if (!call->defaults)
-            call->defaults = cJSON_CreateObject();
-        cJSON *d = cJSON_GetObjectItemCaseSensitive(call->defaults, name);
-        if (!d) {
-            d = value_to_json(it.def);
-            if (!d) {
-                *err = rf_call_error(call, "internal: bad default '%s' for %s", it.def, name);
+    if (v && !cJSON_IsNull(v)) {
+        if (cJSON_IsString(v) && numeric_kind(it)) {
+            const cJSON *n = cached(call, name, v->valuestring);
+            if (!n || cJSON_IsString(n)) {
+                *err = rf_call_bad_input(call, "input '%s': cannot read '%s' as numbers", name, v->valuestring);
                 return NULL;
             }
-            cJSON_AddItemToObject(call->defaults, name, d);
+            return n;
         }
+        return v;
+    }
+    if (it->has_def) {
+        const cJSON *d = cached(call, name, it->def);
+        if (!d)
+            *err = rf_call_error(call, "internal: bad default '%s' for %s", it->def, name);
         return d;
     }
-    if (!it.optional)
-        *err = rf_call_error(call, "missing input '%s'", name);
+    if (!it->optional)
+        *err = rf_call_bad_input(call, "missing input '%s'", name);
     return NULL;
 }
 
@@ -390,9 +456,9 @@ int rf_in_has(RfFormulaCall *call, const char *name)
 static int json_num(RfFormulaCall *call, const char *name, const cJSON *v, double *out)
 {
     if (!cJSON_IsNumber(v))
-        return rf_call_error(call, "input '%s' must be a number", name);
+        return rf_call_bad_input(call, "input '%s' must be a number", name);
     if (!isfinite(v->valuedouble))
-        return rf_call_error(call, "input '%s' is not finite", name);
+        return rf_call_bad_input(call, "input '%s' is not finite", name);
     *out = v->valuedouble;
     return 0;
 }
@@ -400,12 +466,13 @@ static int json_num(RfFormulaCall *call, const char *name, const cJSON *v, doubl
 int rf_in_num(RfFormulaCall *call, const char *name, double *v)
 {
     int err;
-    const cJSON *it = input_item(call, name, &err);
+    RfFormulaItem it;
+    const cJSON *j = input_item(call, name, &it, &err);
     if (err)
         return 1;
-    if (!it)
+    if (!j)
         return rf_call_error(call, "internal: optional number '%s' needs a default", name);
-    return json_num(call, name, it, v);
+    return json_num(call, name, j, v);
 }
 
 int rf_in_angle(RfFormulaCall *call, const char *name, double *radians)
@@ -423,7 +490,7 @@ int rf_in_int(RfFormulaCall *call, const char *name, long *v)
     if (rf_in_num(call, name, &d))
         return 1;
     if (d != floor(d) || fabs(d) > 9.0e15)
-        return rf_call_error(call, "input '%s' must be an integer", name);
+        return rf_call_bad_input(call, "input '%s' must be an integer", name);
     *v = (long)d;
     return 0;
 }
@@ -431,16 +498,18 @@ int rf_in_int(RfFormulaCall *call, const char *name, long *v)
 int rf_in_bool(RfFormulaCall *call, const char *name, int *v)
 {
     int err;
-    const cJSON *it = input_item(call, name, &err);
+    RfFormulaItem it;
+    const cJSON *j = input_item(call, name, &it, &err);
     if (err)
         return 1;
-    if (!it || !cJSON_IsBool(it))
-        return rf_call_error(call, "input '%s' must be true or false", name);
-    *v = cJSON_IsTrue(it);
+    if (!j || !cJSON_IsBool(j))
+        return rf_call_bad_input(call, "input '%s' must be true or false", name);
+    *v = cJSON_IsTrue(j);
     return 0;
 }
 
-/* Reads a JSON array of numbers into v (at most max); returns the count or -1. */
+/* Reads a JSON array of numbers, the first max of them into v; returns how many there are, or
+ * -1 when it is not an array of finite numbers. */
 static int json_numbers(const cJSON *arr, double *v, int max)
 {
     int n = 0;
@@ -448,29 +517,71 @@ static int json_numbers(const cJSON *arr, double *v, int max)
     if (!cJSON_IsArray(arr))
         return -1;
     cJSON_ArrayForEach(e, arr) {
-        if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble) || n >= max)
+        if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble))
             return -1;
-        v[n++] = e->valuedouble;
+        if (n < max)
+            v[n] = e->valuedouble;
+        n++;
     }
     return n;
 }
 
-int rf_in_vec(RfFormulaCall *call, const char *name, int dim, double *v, int *dim_out)
+/* "3", "2 or 3", "2, 3 or 4": the lengths of a mask, for messages and help. */
+static const char *dims_text(unsigned dims, char *buf, size_t cap)
+{
+    int k = 0, count = 0;
+    for (int d = 0; d < 32; d++)
+        count += (dims >> d) & 1u;
+    buf[0] = 0;
+    for (int d = 0; d < 32; d++)
+        if ((dims >> d) & 1u) {
+            size_t len = strlen(buf);
+            snprintf(buf + len, cap - len, "%s%d", k == 0 ? "" : k == count - 1 ? " or " : ", ", d);
+            k++;
+        }
+    return buf;
+}
+
+/* The message for a vector or matrix of a length (size) n the input does not take; what is
+ * the thing counted, singular and plural ("component\0components"). */
+static int wrong_length(RfFormulaCall *call, const char *name, const RfFormulaItem *it, unsigned allowed,
+                        int n, const char *what)
+{
+    char want[64];
+    dims_text(allowed, want, sizeof want);
+    const char *counted = n == 1 ? what : what + strlen(what) + 1;
+    if (it->dims & RF_DIM(n)) /* the spec takes it, the other inputs decide otherwise */
+        return rf_call_bad_input(call, "input '%s' has %d %s; it takes %s here (to match the other inputs)",
+                                 name, n, counted, want);
+    return rf_call_bad_input(call, "input '%s' has %d %s; it takes %s", name, n, counted, want);
+}
+
+int rf_in_vec(RfFormulaCall *call, const char *name, unsigned dims, double *v, int *dim_out)
 {
     int err;
-    const cJSON *it = input_item(call, name, &err);
+    RfFormulaItem it;
+    const cJSON *j = input_item(call, name, &it, &err);
     if (err)
         return 1;
-    if (!it)
+    if (!j)
         return rf_call_error(call, "internal: optional vector '%s' needs a default", name);
-    /* into a buffer of the largest size first: v holds only dim numbers when dim is given */
-    double buf[4];
-    int n = json_numbers(it, buf, 4);
-    if (dim ? n != dim : (n < 2 || n > 4)) {
-        if (dim)
-            return rf_call_error(call, "input '%s' must be a vector of %d finite numbers", name, dim);
-        return rf_call_error(call, "input '%s' must be a vector of 2 to 4 finite numbers", name);
+    unsigned allowed = it.dims & (dims ? dims : ~0u);
+    char want[64];
+    double buf[4] = {0, 0, 0, 0};
+    int n;
+    if (it.grey && cJSON_IsNumber(j)) { /* one number where a colour is expected: grey */
+        if (json_num(call, name, j, &buf[0]))
+            return 1;
+        buf[1] = buf[2] = buf[0];
+        n = 3;
+    } else {
+        n = json_numbers(j, buf, 4);
     }
+    if (n < 0)
+        return rf_call_bad_input(call, "input '%s' must be a vector of %s finite numbers%s", name,
+                                 dims_text(allowed, want, sizeof want), it.grey ? " (or one number: grey)" : "");
+    if (n > 31 || !(allowed & RF_DIM(n)))
+        return wrong_length(call, name, &it, allowed, n, "component\0components");
     memcpy(v, buf, sizeof(double) * (size_t)n);
     if (dim_out)
         *dim_out = n;
@@ -480,49 +591,51 @@ int rf_in_vec(RfFormulaCall *call, const char *name, int dim, double *v, int *di
 int rf_in_vec3(RfFormulaCall *call, const char *name, RfVec3 *v)
 {
     double a[4] = {0, 0, 0, 0};
-    int n = 0;
-    if (rf_in_vec(call, name, 0, a, &n))
+    if (rf_in_vec(call, name, RF_DIM(2) | RF_DIM(3), a, NULL))
         return 1;
-    if (n == 4)
-        return rf_call_error(call, "input '%s' must be a 2D or 3D vector", name);
-    *v = rf_vec3(a[0], a[1], a[2]);
+    *v = rf_vec3(a[0], a[1], a[2]); /* a 2D vector (the spec takes it) lies in the plane z = 0 */
     return 0;
 }
 
-int rf_in_mat(RfFormulaCall *call, const char *name, int n, double *m, int *n_out)
+int rf_in_mat(RfFormulaCall *call, const char *name, unsigned dims, double *m, int *n_out)
 {
     int err;
-    const cJSON *it = input_item(call, name, &err);
+    RfFormulaItem it;
+    const cJSON *j = input_item(call, name, &it, &err);
     if (err)
         return 1;
-    if (!it || !cJSON_IsArray(it))
-        return rf_call_error(call, "input '%s' must be a matrix (rows, or a flat row-major list)", name);
-    int size = cJSON_GetArraySize(it), got = -1;
-    if (size > 0 && cJSON_IsArray(cJSON_GetArrayItem(it, 0))) {
+    unsigned allowed = it.dims & (dims ? dims : ~0u);
+    int size = cJSON_IsArray(j) ? cJSON_GetArraySize(j) : 0, got = -1;
+    double flat[RF_MATN_MAX * RF_MATN_MAX];
+    if (size > 0 && cJSON_IsArray(cJSON_GetArrayItem(j, 0))) {
         /* a list of rows, each as long as there are rows */
         got = size;
         int r = 0;
         const cJSON *row;
-        cJSON_ArrayForEach(row, it) {
-            if (r >= RF_MATN_MAX || json_numbers(row, m + r * size, RF_MATN_MAX) != size) {
-                got = -1;
+        cJSON_ArrayForEach(row, j) {
+            if (size > RF_MATN_MAX || json_numbers(row, m + r * size, RF_MATN_MAX) != size) {
+                got = size > RF_MATN_MAX ? size : -1;
                 break;
             }
             r++;
         }
-    } else {
-        double flat[RF_MATN_MAX * RF_MATN_MAX];
-        int k = json_numbers(it, flat, RF_MATN_MAX * RF_MATN_MAX);
-        for (int s = 2; s <= RF_MATN_MAX; s++)
-            if (k == s * s) {
+    } else if (size > 0) {
+        int k = json_numbers(j, flat, RF_MATN_MAX * RF_MATN_MAX);
+        got = -1;
+        for (int s = 1; s * s <= k; s++)
+            if (k == s * s)
                 got = s;
-                memcpy(m, flat, sizeof(double) * (size_t)k);
-            }
+        if (got >= 2 && got <= RF_MATN_MAX)
+            memcpy(m, flat, sizeof(double) * (size_t)k);
     }
-    if (got < 2 || got > RF_MATN_MAX || (n && got != n)) {
-        if (n)
-            return rf_call_error(call, "input '%s' must be a %dx%d matrix of finite numbers", name, n, n);
-        return rf_call_error(call, "input '%s' must be a square matrix of finite numbers, 2x2 to 4x4", name);
+    if (got < 1)
+        return rf_call_bad_input(call, "input '%s' must be a square matrix of finite numbers (rows, or a "
+                                 "flat row-major list)", name);
+    if (got > 31 || !(allowed & RF_DIM(got))) {
+        char what[64];
+        int k = snprintf(what, sizeof what, "row (%dx%d)", got, got);
+        snprintf(what + k + 1, sizeof what - (size_t)k - 1, "rows (%dx%d)", got, got);
+        return wrong_length(call, name, &it, allowed, got, what);
     }
     if (n_out)
         *n_out = got;
@@ -532,54 +645,57 @@ int rf_in_mat(RfFormulaCall *call, const char *name, int n, double *m, int *n_ou
 int rf_in_nums(RfFormulaCall *call, const char *name, double **v, int *count)
 {
     int err;
-    const cJSON *it = input_item(call, name, &err);
+    RfFormulaItem it;
+    const cJSON *j = input_item(call, name, &it, &err);
     if (err)
         return 1;
-    if (!it)
-        return rf_call_error(call, "missing input '%s'", name);
-    if (cJSON_IsNumber(it)) { /* a single number is a list of one */
+    if (!j)
+        return rf_call_bad_input(call, "missing input '%s'", name);
+    if (cJSON_IsNumber(j)) { /* a single number is a list of one */
         *v = malloc(sizeof(double));
         if (!*v)
             return rf_call_error(call, "out of memory");
         *count = 1;
-        return json_num(call, name, it, *v);
+        return json_num(call, name, j, *v);
     }
-    int size = cJSON_IsArray(it) ? cJSON_GetArraySize(it) : -1;
+    int size = cJSON_IsArray(j) ? cJSON_GetArraySize(j) : -1;
     if (size < 1)
-        return rf_call_error(call, "input '%s' must be a non-empty list of numbers", name);
+        return rf_call_bad_input(call, "input '%s' must be a non-empty list of numbers", name);
     *v = malloc(sizeof(double) * (size_t)size);
     if (!*v)
         return rf_call_error(call, "out of memory");
-    if (json_numbers(it, *v, size) != size) {
+    if (json_numbers(j, *v, size) != size) {
         free(*v);
         *v = NULL;
-        return rf_call_error(call, "input '%s' must be a list of finite numbers", name);
+        return rf_call_bad_input(call, "input '%s' must be a list of finite numbers", name);
     }
     *count = size;
     return 0;
 }
 
-int rf_in_vecs(RfFormulaCall *call, const char *name, int dim, int max, double *v, int *count,
+int rf_in_vecs(RfFormulaCall *call, const char *name, unsigned dims, int max, double *v, int *count,
                int *dim_out)
 {
     int err;
-    const cJSON *it = input_item(call, name, &err);
+    RfFormulaItem it;
+    const cJSON *j = input_item(call, name, &it, &err);
     if (err)
         return 1;
-    if (!it || !cJSON_IsArray(it) || cJSON_GetArraySize(it) < 1)
-        return rf_call_error(call, "input '%s' must be a list of vectors", name);
-    if (cJSON_GetArraySize(it) > max)
-        return rf_call_error(call, "input '%s' has more than %d vectors", name, max);
-    int n = 0, d = dim;
+    if (!j || !cJSON_IsArray(j) || cJSON_GetArraySize(j) < 1)
+        return rf_call_bad_input(call, "input '%s' must be a list of vectors", name);
+    if (cJSON_GetArraySize(j) > max)
+        return rf_call_bad_input(call, "input '%s' has more than %d vectors", name, max);
+    int n = 0, d = 0;
+    unsigned allowed = it.dims & (dims ? dims : ~0u);
     const cJSON *e;
-    cJSON_ArrayForEach(e, it) {
+    cJSON_ArrayForEach(e, j) {
         double tmp[4];
         int k = json_numbers(e, tmp, 4);
-        if (d == 0 && k >= 2)
-            d = k;
-        if (k != d || k < 2)
-            return rf_call_error(call, "input '%s': every vector must have %s components", name,
-                                 dim ? (dim == 2 ? "2" : dim == 3 ? "3" : "4") : "the same number of (2 to 4)");
+        if (k < 0)
+            return rf_call_bad_input(call, "input '%s': vector %d is not a list of finite numbers", name, n + 1);
+        if (k > 31 || !(allowed & RF_DIM(k)) || (d && k != d))
+            return wrong_length(call, name, &it, d ? RF_DIM(d) : allowed, k, "component in a vector\0components in a vector");
+        d = k;
         memcpy(v + n * d, tmp, sizeof(double) * (size_t)d);
         n++;
     }
@@ -592,22 +708,27 @@ int rf_in_vecs(RfFormulaCall *call, const char *name, int dim, int max, double *
 int rf_in_tris(RfFormulaCall *call, const char *name, int max, double *corners, int *count)
 {
     int err;
-    const cJSON *it = input_item(call, name, &err);
+    RfFormulaItem it;
+    const cJSON *j = input_item(call, name, &it, &err);
     if (err)
         return 1;
-    if (!it || !cJSON_IsArray(it) || cJSON_GetArraySize(it) < 1)
-        return rf_call_error(call, "input '%s' must be a list of triangles [[a,b,c], ...]", name);
-    if (cJSON_GetArraySize(it) > max)
-        return rf_call_error(call, "input '%s' has more than %d triangles", name, max);
+    if (!j || !cJSON_IsArray(j) || cJSON_GetArraySize(j) < 1)
+        return rf_call_bad_input(call, "input '%s' must be a list of triangles [[a,b,c], ...]", name);
+    if (cJSON_GetArraySize(j) > max)
+        return rf_call_bad_input(call, "input '%s' has more than %d triangles", name, max);
     int n = 0;
     const cJSON *tri, *corner;
-    cJSON_ArrayForEach(tri, it) {
+    cJSON_ArrayForEach(tri, j) {
         int k = 0;
         if (!cJSON_IsArray(tri) || cJSON_GetArraySize(tri) != 3)
-            return rf_call_error(call, "input '%s': each triangle is three 3D points [a,b,c]", name);
+            return rf_call_bad_input(call, "input '%s': each triangle is three 3D points [a,b,c]", name);
         cJSON_ArrayForEach(corner, tri) {
-            if (json_numbers(corner, corners + 9 * n + 3 * k, 3) != 3)
-                return rf_call_error(call, "input '%s': each corner must be 3 finite numbers", name);
+            double p[4];
+            int len = json_numbers(corner, p, 4);
+            if (len != 3)
+                return rf_call_bad_input(call, "input '%s': each corner must be 3 finite numbers, not %d",
+                                         name, len);
+            memcpy(corners + 9 * n + 3 * k, p, sizeof(double) * 3);
             k++;
         }
         n++;
@@ -616,15 +737,19 @@ int rf_in_tris(RfFormulaCall *call, const char *name, int max, double *corners, 
     return 0;
 }
 
-int rf_in_choice(RfFormulaCall *call, const char *name, const char *choices, int *index)
+int rf_in_choice(RfFormulaCall *call, const char *name, int *index)
 {
     int err;
-    const cJSON *it = input_item(call, name, &err);
+    RfFormulaItem it;
+    const cJSON *j = input_item(call, name, &it, &err);
     if (err)
         return 1;
-    if (!it || !cJSON_IsString(it))
-        return rf_call_error(call, "input '%s' must be one of %s", name, choices);
-    const char *w = it->valuestring, *p = choices;
+    const char *choices = it.kind;
+    if (!strchr(choices, '|'))
+        return rf_call_error(call, "internal: input '%s' has no choices in its spec", name);
+    if (!j || !cJSON_IsString(j))
+        return rf_call_bad_input(call, "input '%s' must be one of %s", name, choices);
+    const char *w = j->valuestring, *p = choices;
     size_t wn = strlen(w);
     for (int i = 0;; i++) {
         const char *bar = strchr(p, '|');
@@ -637,7 +762,7 @@ int rf_in_choice(RfFormulaCall *call, const char *name, const char *choices, int
             break;
         p = bar + 1;
     }
-    return rf_call_error(call, "input '%s' must be one of %s, not '%s'", name, choices, w);
+    return rf_call_bad_input(call, "input '%s' must be one of %s, not '%s'", name, choices, w);
 }
 
 void rf_out_num(RfFormulaCall *call, const char *name, double v)
@@ -694,30 +819,36 @@ void rf_out_mat(RfFormulaCall *call, const char *name, const double *m, int n)
     cJSON_AddItemToObject(call->out, name, rows);
 }
 
-/* Runs f on the parsed inputs; returns the output object or NULL with call.error set. */
-static cJSON *run(const RfFormula *f, cJSON *in, char *error, size_t error_size)
+cJSON *rf_formula_run(const RfFormula *f, const cJSON *in, char *error, size_t error_size,
+                      RfFormulaResult *result)
 {
     RfFormulaCall call;
     memset(&call, 0, sizeof call);
     call.formula = f;
-    call.in = in;
+    call.in = (cJSON *)in;
     call.out = cJSON_CreateObject();
     if (!cJSON_IsObject(in)) {
-        rf_call_error(&call, "the inputs must be a JSON object");
+        rf_call_bad_input(&call, "the inputs must be a JSON object");
     } else {
         /* every given input must be one the formula takes */
         const cJSON *e;
-        SpecItem it;
+        RfFormulaItem it;
         cJSON_ArrayForEach(e, in) {
             if (!spec_find(f->inputs, e->string, &it)) {
-                rf_call_error(&call, "unknown input '%s' (inputs: %s)", e->string, f->inputs);
+                char names[400] = "";
+                for (int i = 0; rf_formula_item(f->inputs, i, &it); i++) {
+                    size_t len = strlen(names);
+                    snprintf(names + len, sizeof names - len, "%s%s", i ? ", " : "", it.name);
+                }
+                rf_call_bad_input(&call, "unknown input '%s' (inputs: %s)", e->string, names);
                 break;
             }
         }
         if (!call.failed && f->fn(&call) && !call.failed)
             rf_call_error(&call, "failed without a message");
     }
-    cJSON_Delete(call.defaults);
+    cJSON_Delete(call.cache);
+    *result = call.failed ? call.result : RF_FORMULA_OK;
     if (call.failed) {
         snprintf(error, error_size, "%s", call.error);
         cJSON_Delete(call.out);
@@ -729,125 +860,19 @@ static cJSON *run(const RfFormula *f, cJSON *in, char *error, size_t error_size)
 int rf_formula_run_json(const RfFormula *f, const char *in_json, char **out_json)
 {
     char error[512];
+    RfFormulaResult result;
     cJSON *in = cJSON_Parse(in_json);
     if (!in) {
         *out_json = strdup("the inputs are not valid JSON");
-        return 1;
+        return RF_FORMULA_BAD_INPUT;
     }
-    cJSON *out = run(f, in, error, sizeof error);
+    cJSON *out = rf_formula_run(f, in, error, sizeof error, &result);
     cJSON_Delete(in);
     if (!out) {
         *out_json = strdup(error);
-        return 1;
+        return result;
     }
     *out_json = rf_formula_json_text(out);
     cJSON_Delete(out);
-    return *out_json ? 0 : 1;
-}
-
-/* Reads one line of any length; returns NULL at the end of the input. */
-static char *read_line(FILE *in)
-{
-    size_t cap = 256, n = 0;
-    char *buf = malloc(cap);
-    int c;
-    if (!buf)
-        return NULL;
-    while ((c = fgetc(in)) != EOF && c != '\n') {
-        if (n + 1 >= cap) {
-            char *nb = realloc(buf, cap *= 2);
-            if (!nb) {
-                free(buf);
-                return NULL;
-            }
-            buf = nb;
-        }
-        buf[n++] = (char)c;
-    }
-    if (c == EOF && n == 0) {
-        free(buf);
-        return NULL;
-    }
-    buf[n] = 0;
-    return buf;
-}
-
-int rf_formula_batch(FILE *in, FILE *out)
-{
-    int failures = 0;
-    char *line;
-    while ((line = read_line(in)) != NULL) {
-        const char *p = line;
-        while (isspace((unsigned char)*p))
-            p++;
-        if (!*p) {
-            free(line);
-            continue;
-        }
-        cJSON *reply = cJSON_CreateObject();
-        cJSON *c = cJSON_ParseWithOpts(p, NULL, 1); /* trailing text makes the line invalid */
-        const cJSON *id = c ? cJSON_GetObjectItemCaseSensitive(c, "id") : NULL;
-        const cJSON *inputs = c ? cJSON_GetObjectItemCaseSensitive(c, "in") : NULL;
-        const RfFormula *f = NULL;
-        char error[512] = "";
-        if (cJSON_IsString(id))
-            cJSON_AddStringToObject(reply, "id", id->valuestring);
-        else
-            cJSON_AddNullToObject(reply, "id");
-        if (!c)
-            snprintf(error, sizeof error, "the line is not valid JSON");
-        else if (!cJSON_IsString(id))
-            snprintf(error, sizeof error, "the case has no string \"id\"");
-        else if (!(f = rf_formula_find(id->valuestring)))
-            snprintf(error, sizeof error, "unknown formula id '%s' (see: refray formula list)", id->valuestring);
-        else {
-            cJSON *empty = NULL;
-            if (!inputs)
-                inputs = empty = cJSON_CreateObject();
-            cJSON *o = run(f, (cJSON *)inputs, error, sizeof error);
-            cJSON_Delete(empty);
-            if (o)
-                cJSON_AddItemToObject(reply, "out", o);
-        }
-        if (error[0]) {
-            cJSON_AddStringToObject(reply, "error", error);
-            failures++;
-        }
-        char *text = rf_formula_json_text(reply);
-        fprintf(out, "%s\n", text ? text : "{\"id\":null,\"error\":\"out of memory\"}");
-        fflush(out);
-        free(text);
-        cJSON_Delete(reply);
-        cJSON_Delete(c);
-        free(line);
-    }
-    return failures;
-}
-
-static void help_spec(const char *title, const char *spec, FILE *out)
-{
-    SpecItem it;
-    const char *p = spec ? spec : "";
-    fprintf(out, "%s:\n", title);
-    while (spec_next(&p, &it)) {
-        fprintf(out, "  %-16s %-5s", it.name, it.kind);
-        if (it.has_def)
-            fprintf(out, " (default %s)", it.def);
-        else if (it.optional)
-            fprintf(out, " (optional)");
-        if (it.note[0])
-            fprintf(out, " %s", it.note);
-        fputc('\n', out);
-    }
-}
-
-void rf_formula_help(const RfFormula *f, FILE *out)
-{
-    fprintf(out, "%s (script section %s)\n  %s\n", f->id, f->section, f->summary);
-    help_spec("inputs", f->inputs, out);
-    help_spec("outputs", f->outputs, out);
-    if (f->erratum)
-        fprintf(out, "erratum of the script:\n  %s\n", f->erratum);
-    fprintf(out, "example:\n  refray formula %s key=value ...   (vectors 1,2,3; matrices "
-                 "1,0;0,1 or a flat row-major list)\n", f->id);
+    return *out_json ? RF_FORMULA_OK : RF_FORMULA_FAILED;
 }
