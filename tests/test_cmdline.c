@@ -183,8 +183,8 @@ static void t_conventions(void)
     RF_CHECK_STR(out, "refray diff: unknown option '--heatmpa'; did you mean '--heatmap'? (see: refray diff --help)\n");
     RUN("'%s' ok.rf -o x.exr --mdoe flat", s.raster);
     RF_CHECK_STR(out, "refray-raster: unknown option '--mdoe'; did you mean '--mode'? (see: refray-raster --help)\n");
-    RUN("'%s' render ok.rf -o x.exr --s 1", s.bin); /* a unique prefix is taken (GNU); this one is not */
-    RF_CHECK_STR(out, "refray render: option '--s' is ambiguous; possibilities: --samples --seed --sampler --srgb "
+    RUN("'%s' render ok.rf -o x.exr --sa 1", s.bin); /* a unique prefix is taken (GNU); this one is not */
+    RF_CHECK_STR(out, "refray render: option '--sa' is ambiguous; possibilities: --samples --sampler "
                       "(see: refray render --help)\n");
     RUN("'%s' render ok.rf -o x.exr --qui", s.bin);
     RF_CHECK_EQ_INT(code, 0);
