@@ -375,7 +375,7 @@ static void t_sides_trace(void)
 }
 
 /* POV-Ray 3.7 renders tests/data/sides/shadow_filtered.pov, the hand-written twin of
- * shadow_filtered.rf: with refray's filtered shadows the two agree to POV-Ray's half-float EXR
+ * scenes/shadows_filtered.rf: with refray's filtered shadows the two agree to POV-Ray's half-float EXR
  * rounding (tests/test_povray.c's bounds: max 6e-4, mean 1.5e-4; measured 2.4e-4, 6.3e-5); the
  * same scene with opaque shadows differs by 0.23, so the check can tell the two rules apart. */
 static void t_sides_povray(void)
@@ -395,7 +395,7 @@ static void t_sides_povray(void)
     int code;
     char pov[512], rf[512]; /* rf_test_data's buffer is static */
     snprintf(pov, sizeof pov, "%s", rf_test_data("sides/shadow_filtered.pov"));
-    snprintf(rf, sizeof rf, "%s", rf_test_data("sides/shadow_filtered.rf"));
+    snprintf(rf, sizeof rf, "scenes/shadows_filtered.rf");
     snprintf(cmd, sizeof cmd,
              "d=%s; povray +I%s +O\"$d/pov.exr\" +FE +W96 +H96 -A -D -V +WT2 Declare=ADC=0 >\"$d/pov.log\" 2>&1 && "
              "%s render %s -o \"$d/rf.exr\" >/dev/null 2>&1 && %s diff \"$d/rf.exr\" \"$d/pov.exr\" --kv",

@@ -1,4 +1,4 @@
-// POV-Ray 3.7's side of tests/test_sides.c's check of filtered shadows: shadow_filtered.rf
+// POV-Ray 3.7's side of tests/test_sides.c's check of filtered shadows: scenes/shadows_filtered.rf
 // written by hand. Transmit t and filter f pass (f colour + t) of the light at each surface a
 // shadow ray crosses; with ior 1 the camera rays go straight through too. refray's ka Ia is
 // POV-Ray's pigment x ambient x ambient_light, kd its pigment x diffuse.
