@@ -112,6 +112,8 @@ difference &le; 1e-4 and &ge; 99.9 % of pixels within 1/255. Each image is the t
 and <code>refray-raster</code> (OpenGL 4.5 core through OSMesa or surfaceless EGL, float framebuffer), compared by
 <code>refray diff</code> on linear RGB. Silhouettes are the pixels where either depth image is
 discontinuous (docs/compare.md); they are reported but not judged. Generated $(date -u '+%Y-%m-%d %H:%M UTC') in $elapsed s.</p>
+<p>The full ray-traced images (shadows, mirrors, glass) against Mitsuba 3 and POV-Ray:
+<a href="crosscheck/index.html">crosscheck/index.html</a> (made by <code>make crosscheck</code>, docs/crosscheck.md)$([ -f "$out/crosscheck/index.html" ] || echo ' &mdash; not made yet').</p>
 <table><tr><th>scene</th><th>size</th><th>verdict</th><th>mean abs</th><th>within 1/255</th><th>max abs</th><th>silhouettes</th><th>coverage &ne;</th><th>depth max rel</th><th>mean abs (all px)</th><th>time tracer / raster (s)</th></tr>
 HEAD
     cat "$rows"

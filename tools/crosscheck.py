@@ -19,8 +19,9 @@ max |difference| <= 1e-3 max(1, |value|) ... taken as max_abs <= 1e-3 and mean_a
 
 Writes OUT/index.html (the images, heat maps, numbers and verdicts) and OUT/results.json; the
 exit code is 1 when a comparison that ran failed. A renderer that is not installed is skipped and
-said so (Mitsuba: `pip install mitsuba==3.5.2`, or run with --install; POV-Ray: apt-get install
-povray).
+said so (Mitsuba: `pip install mitsuba==3.5.2 numpy`, or run with --install, which installs it
+into a venv of its own, ~/.cache/refray/mitsuba-venv, and uses it from then on; POV-Ray:
+apt-get install povray).
 
 usage: tools/crosscheck.py [--refray build/refray] [--out report/crosscheck] [--samples 1024]
                            [--install] [SCENE.rf ...]
@@ -58,6 +59,30 @@ def kv(text):
             k, v = line.split("=", 1)
             out[k.strip()] = v.strip()
     return out
+
+
+VENV = os.path.join(os.environ.get("XDG_CACHE_HOME") or os.path.expanduser("~/.cache"), "refray", "mitsuba-venv")
+
+
+def venv_python(install):
+    """Mitsuba from a venv of its own (pip may not install into a system Python, PEP 668): when
+    VENV has it, or install is set and it can be made, this script runs again in it (no return)."""
+    py = os.path.join(VENV, "bin", "python3")
+    check = [py, "-c", "import mitsuba, numpy"]
+    if not (os.path.exists(py) and subprocess.run(check, capture_output=True).returncode == 0):
+        if not install:
+            return
+        say("installing %s and numpy into %s" % (MITSUBA_PIN, VENV))
+        if not os.path.exists(py) and run([sys.executable, "-m", "venv", VENV]).returncode != 0:
+            say("cannot make a venv (Debian: apt-get install python3-venv)")
+            return
+        p = run([py, "-m", "pip", "install", "--quiet", MITSUBA_PIN, "numpy"])
+        if p.returncode != 0 or subprocess.run(check, capture_output=True).returncode != 0:
+            say("pip could not install %s: %s" % (MITSUBA_PIN, (p.stderr or p.stdout).strip()[-300:]))
+            return
+    say("using Mitsuba from %s" % VENV)
+    sys.stderr.flush()
+    os.execv(py, [py, os.path.abspath(__file__)] + [x for x in sys.argv[1:] if x != "--install"])
 
 
 def have_mitsuba():
@@ -111,20 +136,18 @@ def main():
     ap.add_argument("--refray", default=os.path.join(ROOT, "build", "refray"))
     ap.add_argument("--out", default=os.path.join(ROOT, "report", "crosscheck"))
     ap.add_argument("--samples", type=int, default=1024, help="samples per pixel for both (default 1024)")
-    ap.add_argument("--install", action="store_true", help="pip install %s and numpy when missing" % MITSUBA_PIN)
+    ap.add_argument("--install", action="store_true", help="pip install %s and numpy into a venv when missing" % MITSUBA_PIN)
     ap.add_argument("scenes", nargs="*")
     a = ap.parse_args()
     scenes = a.scenes or sorted(os.path.join(ROOT, "scenes", "crosscheck", f)
                                 for f in os.listdir(os.path.join(ROOT, "scenes", "crosscheck")) if f.endswith(".rf"))
     os.makedirs(a.out, exist_ok=True)
-    if not have_mitsuba() and a.install:
-        say("installing %s: %s -m pip install %s numpy" % (MITSUBA_PIN, sys.executable, MITSUBA_PIN))
-        subprocess.run([sys.executable, "-m", "pip", "install", "--quiet", MITSUBA_PIN, "numpy"], check=False)
-        importlib.invalidate_caches()
+    if not have_mitsuba():
+        venv_python(a.install)  # re-runs this script in the venv when Mitsuba is (or gets) there
     use_mi = have_mitsuba()
     if not use_mi:
-        say("Mitsuba 3 is not installed: skipped (%s -m pip install %s numpy, or make crosscheck "
-            "CROSSCHECK_INSTALL=1)" % (sys.executable, MITSUBA_PIN))
+        say("Mitsuba 3 is not installed: its comparisons are skipped (%s -m pip install %s numpy, or make "
+            "crosscheck CROSSCHECK_INSTALL=1, which installs it into %s)" % (sys.executable, MITSUBA_PIN, VENV))
     use_pov = shutil.which("povray") is not None
     if not use_pov:
         say("POV-Ray is not installed: skipped (apt-get install povray)")

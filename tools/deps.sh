@@ -8,7 +8,8 @@
 #                               installed as root, else the line is printed; never fails)
 #        tools/deps.sh test    (what some tests use when present, optional: POV-Ray for the
 #                               independent full-render check, GNU parallel and Slurm's sbatch for
-#                               the farm examples, python3 for tools/nff2pov.py, Xvfb for the
+#                               the farm examples, python3 and python3-venv for make crosscheck's
+#                               Mitsuba venv, Xvfb for the
 #                               viewer's headless test; as `bench`)
 set -u
 
@@ -37,6 +38,7 @@ if [ "${1:-}" = test ]; then
     command -v parallel >/dev/null 2>&1 || set -- "$@" parallel
     command -v sbatch >/dev/null 2>&1 || set -- "$@" slurm-client
     command -v python3 >/dev/null 2>&1 || set -- "$@" python3
+    python3 -c 'import ensurepip' >/dev/null 2>&1 || set -- "$@" python3-venv
     command -v xvfb-run >/dev/null 2>&1 || set -- "$@" xvfb xauth
     command -v xdotool >/dev/null 2>&1 || set -- "$@" xdotool
     optional "refray tests" "what some tests use" "those tests skip without" \

@@ -22,6 +22,22 @@ const char *rf_export_format_name(RfExportFormat f)
     return f == RF_EXPORT_MITSUBA ? "Mitsuba 3" : f == RF_EXPORT_PBRT ? "pbrt-v4" : "POV-Ray 3.7";
 }
 
+/* Makes room for n more bytes and a NUL in a growing buffer; -1 when out of memory. */
+static int reserve(char **buf, size_t len, size_t *cap, size_t n)
+{
+    if (len + n + 1 <= *cap)
+        return 0;
+    size_t cap2 = *cap ? *cap : 1024;
+    while (len + n + 1 > cap2)
+        cap2 *= 2;
+    char *b = realloc(*buf, cap2);
+    if (!b)
+        return -1;
+    *buf = b;
+    *cap = cap2;
+    return 0;
+}
+
 /* Appends a formatted text to a growing NUL-terminated buffer. */
 static int append_v(char **buf, size_t *len, size_t *cap, const char *fmt, va_list ap)
 {
@@ -29,18 +45,8 @@ static int append_v(char **buf, size_t *len, size_t *cap, const char *fmt, va_li
     va_copy(aq, ap);
     int n = vsnprintf(NULL, 0, fmt, aq);
     va_end(aq);
-    if (n < 0)
+    if (n < 0 || reserve(buf, *len, cap, (size_t)n))
         return -1;
-    if (*len + (size_t)n + 1 > *cap) {
-        size_t cap2 = *cap ? *cap : 4096;
-        while (*len + (size_t)n + 1 > cap2)
-            cap2 *= 2;
-        char *b = realloc(*buf, cap2);
-        if (!b)
-            return -1;
-        *buf = b;
-        *cap = cap2;
-    }
     vsnprintf(*buf + *len, *cap - *len, fmt, ap);
     *len += (size_t)n;
     return 0;
@@ -98,17 +104,9 @@ void rf__ex_note(RfExCtx *c, RfSrcLoc loc, int problem, const char *fmt, ...)
     if (problem)
         ex->problems++;
     size_t n = strlen(line);
-    if (ex->notes_len + n + 1 > ex->notes_cap) {
-        size_t cap = ex->notes_cap ? ex->notes_cap : 1024;
-        while (ex->notes_len + n + 1 > cap)
-            cap *= 2;
-        char *b = realloc(ex->notes, cap);
-        if (!b) {
-            ex->failed = 1;
-            return;
-        }
-        ex->notes = b;
-        ex->notes_cap = cap;
+    if (reserve(&ex->notes, ex->notes_len, &ex->notes_cap, n)) {
+        ex->failed = 1;
+        return;
     }
     memcpy(ex->notes + ex->notes_len, line, n + 1);
     ex->notes_len += n;
@@ -224,6 +222,15 @@ void rf__ex_common_checks(RfExCtx *c, int area_ok, int lens_ok)
                         "counterpart in %s (written as ideal)", m->name, rf__ex_num(c, m->gloss), to);
     }
     free(used);
+    for (size_t i = 0; c->o->format != RF_EXPORT_POV && i < s->light_count; i++) {
+        const RfLight *l = &s->lights[i];
+        if (l->kind != RF_LIGHT_DIRECTIONAL && !rf_light_is_area(l->kind) && l->falloff == RF_FALLOFF_NONE)
+            rf__ex_note(c, l->loc, 1, "%s light without falloff (NFF's convention): %s's lights fall off with the "
+                        "squared distance (written with it)", rf_light_kind_name(l->kind), to);
+        if (l->kind == RF_LIGHT_SPOT && l->spot_exponent != 0.0)
+            rf__ex_note(c, l->loc, 1, "spot light with exponent %s: %s's spot has no cos^n term, only a fade to "
+                        "its edge (written without it)", rf__ex_num(c, l->spot_exponent), to);
+    }
     if (!area_ok)
         for (size_t i = 0; i < s->light_count; i++)
             if (rf_light_is_area(s->lights[i].kind))

@@ -63,8 +63,9 @@ const char *rf__ex_rgb(RfExCtx *c, RfRgb v, const char *sep);
 /* The header comment's lines that every target shares (the source, the conventions of refray
  * it is read with), each line prefixed with lead ("# ", "// "). */
 void rf__ex_common_header(RfExCtx *c, const char *lead);
-/* The notes every target shares: ambient light, emission, glossy rays, area lights where the
- * target has none (area_ok 0), a thin lens where it has none (lens_ok 0). */
+/* The notes every target shares: ambient light, emission, glossy rays, filtered shadows and
+ * lights without falloff or with a spot exponent (but for POV-Ray), area lights where the target
+ * has none (area_ok 0), a thin lens where it has none (lens_ok 0). */
 void rf__ex_common_checks(RfExCtx *c, int area_ok, int lens_ok);
 
 /* A note when the camera's near plane (hither) may cut the scene: POV-Ray and pbrt have none. */

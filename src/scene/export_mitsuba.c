@@ -73,9 +73,6 @@ static void write_matrix(RfExCtx *c, RfVec3 x, RfVec3 y, RfVec3 z, RfVec3 t)
 static void write_light(RfExCtx *c, const RfLight *l)
 {
     RfRgb i = rf_rgb_scale(l->intensity, MI_LIGHT_SCALE);
-    if (l->kind != RF_LIGHT_DIRECTIONAL && !rf_light_is_area(l->kind) && l->falloff == RF_FALLOFF_NONE)
-        rf__ex_note(c, l->loc, 1, "%s light without falloff (NFF's convention): Mitsuba's lights fall off with "
-                    "the squared distance (written with it)", rf_light_kind_name(l->kind));
     switch (l->kind) {
     case RF_LIGHT_POINT:
         rf__ex_printf(c, "  <emitter type=\"point\"><point name=\"position\" value=\"%s\"/> <rgb name=\"intensity\" "
@@ -87,10 +84,6 @@ static void write_light(RfExCtx *c, const RfLight *l)
                       rf__ex_rgb(c, i, ", "));
         return;
     case RF_LIGHT_SPOT:
-        if (l->spot_exponent != 0.0)
-            rf__ex_note(c, l->loc, 1, "spot light with exponent %s: Mitsuba's spot has no cos^n term, only a "
-                        "linear fade between beam_width and cutoff_angle (written without it)",
-                        rf__ex_num(c, l->spot_exponent));
         rf__ex_printf(c, "  <emitter type=\"spot\">\n");
         write_matrix(c, rf_vec3_cross(rf__ex_perpendicular(l->direction), l->direction),
                      rf__ex_perpendicular(l->direction), l->direction, l->position);
@@ -309,7 +302,7 @@ void rf__export_mitsuba(RfExCtx *c)
         rf__ex_printf(c, "    <float name=\"aperture_radius\" value=\"%s\"/> <float name=\"focus_distance\" value=\"%s\"/>\n",
                       rf__ex_num(c, s->camera.aperture), rf__ex_num(c, s->camera.focus));
     rf__ex_printf(c, "    <float name=\"near_clip\" value=\"%s\"/> <float name=\"far_clip\" value=\"%s\"/>\n",
-                  rf__ex_num(c, s->camera.hither > 0.0 ? s->camera.hither : 1e-6 * extent), rf__ex_num(c, 1e7 * extent));
+                  rf__ex_num(c, s->camera.hither > 0.0 ? s->camera.hither : 1e-6 * extent), rf__ex_num(c, 1e4 * extent));
     rf__ex_printf(c, "    <transform name=\"to_world\"><lookat origin=\"%s\" target=\"%s\" up=\"%s\"/></transform>\n",
                   rf__ex_vec(c, s->camera.eye, ", "), rf__ex_vec(c, s->camera.target, ", "),
                   rf__ex_vec(c, s->camera.up, ", "));

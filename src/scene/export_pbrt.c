@@ -43,18 +43,12 @@ static void frame(RfExCtx *c, RfVec3 x, RfVec3 y, RfVec3 z, RfVec3 t)
 static void light(RfExCtx *c, const RfLight *l)
 {
     RfRgb i = rf_rgb_scale(l->intensity, PBRT_LIGHT_SCALE);
-    if (l->kind != RF_LIGHT_DIRECTIONAL && !rf_light_is_area(l->kind) && l->falloff == RF_FALLOFF_NONE)
-        rf__ex_note(c, l->loc, 1, "%s light without falloff: pbrt-v4's lights fall off with the squared distance "
-                    "(written with it)", rf_light_kind_name(l->kind));
     switch (l->kind) {
     case RF_LIGHT_POINT:
         rf__ex_printf(c, "LightSource \"point\" \"point3 from\" [ %s ] \"rgb I\" [ %s ]\n", rf__ex_vec(c, l->position, " "),
                       rf__ex_rgb(c, i, " "));
         return;
     case RF_LIGHT_SPOT:
-        if (l->spot_exponent != 0.0)
-            rf__ex_note(c, l->loc, 1, "spot light with exponent %s: pbrt-v4's spot has a smoothstep edge, no cos^n "
-                        "(written without it)", rf__ex_num(c, l->spot_exponent));
         rf__ex_printf(c, "LightSource \"spot\" \"point3 from\" [ %s ] \"point3 to\" [ %s ] \"float coneangle\" [ %s ] "
                       "\"float conedelta\" [ 0 ] \"rgb I\" [ %s ]\n", rf__ex_vec(c, l->position, " "),
                       rf__ex_vec(c, rf_vec3_add(l->position, l->direction), " "), rf__ex_num(c, l->spot_cutoff),
