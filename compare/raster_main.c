@@ -72,13 +72,9 @@ int main(int argc, char **argv)
         if (!ok)
             return rf_opt_bad_value(&p);
     }
-    char **ops;
-    int n = rf_opt_operands(&p, &ops);
-    if (n == 0)
-        return rf_opt_usage_error(&raster_cmd, "missing the scene file");
-    if (n > 1)
-        return rf_opt_usage_error(&raster_cmd, "one scene only, '%s' is a second", ops[1]);
-    scene_path = ops[0];
+    int bad = rf_opt_operand(&p, "the scene file", &scene_path);
+    if (bad)
+        return bad;
     if (!exr && !png && !depth_out)
         return rf_opt_usage_error(&raster_cmd, "missing the output: -o OUT.exr, -o OUT.png, --png or --depth-out");
     if ((exr && !rf_arg_image_format("refray-raster", "-o", exr, RF_IMAGE_EXR | RF_IMAGE_PNG)) ||
@@ -88,7 +84,7 @@ int main(int argc, char **argv)
     char err[1024];
     RfScene scene;
     const char *outs[3] = {exr, png, depth_out}, *ins[1] = {scene_path};
-    int bad = rf_arg_outputs_check("refray-raster", outs, 3, ins, 1); /* before any work */
+    bad = rf_arg_outputs_check("refray-raster", outs, 3, ins, 1); /* before any work */
     if (bad)
         return bad;
     rf_scene_init(&scene);

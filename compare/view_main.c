@@ -536,13 +536,9 @@ int main(int argc, char **argv)
         if (!ok)
             return rf_opt_bad_value(&p);
     }
-    char **ops;
-    int n = rf_opt_operands(&p, &ops);
-    if (n == 0)
-        return rf_opt_usage_error(&cmd, "missing the scene file");
-    if (n > 1)
-        return rf_opt_usage_error(&cmd, "one scene only, '%s' is a second", ops[1]);
-    scene_path = ops[0];
+    int bad = rf_opt_operand(&p, "the scene file", &scene_path);
+    if (bad)
+        return bad;
     char err[1024];
     if (save && !screenshot)
         return rf_opt_usage_error(&cmd, "--save comes with --screenshot");
@@ -551,7 +547,7 @@ int main(int argc, char **argv)
         if (!rf_arg_image_format("refray-view", "--screenshot", screenshot, RF_IMAGE_PNG) ||
             (save && !rf_arg_image_format("refray-view", "--save", save, RF_IMAGE_EXR | RF_IMAGE_PNG)))
             return RF_EXIT_USAGE;
-        int bad = rf_arg_outputs_check("refray-view", outs, 2, ins, 1);
+        bad = rf_arg_outputs_check("refray-view", outs, 2, ins, 1);
         if (bad)
             return bad;
     }

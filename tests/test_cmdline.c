@@ -149,43 +149,43 @@ static void t_conventions(void)
     snprintf(path, sizeof path, "%s/w.exr", s.dir);
     RF_CHECK(rf_exr_read(path, &img, err, sizeof err) == RF_OK && img.width == 4 && img.height == 3);
     rf_image_free(&img);
-    /* no invented position for a file that cannot be opened */
-    RUN("'%s' render nosuch.rf -o x.exr", s.bin);
-    RF_CHECK_EQ_INT(code, 4);
-    RF_CHECK_STR(out, "refray render: cannot open nosuch.rf: No such file or directory\n");
-    /* what is missing, by name */
-    RUN("'%s' render", s.bin);
-    RF_CHECK_EQ_INT(code, 5);
-    RF_CHECK_STR(out, "refray render: missing the scene file (see: refray render --help)\n");
-    RUN("'%s' trace ok.rf 3", s.bin);
-    RF_CHECK_EQ_INT(code, 5);
-    RF_CHECK_STR(out, "refray trace: missing the pixel's Y (see: refray trace --help)\n");
-    RUN("'%s' diff a.exr", s.bin);
-    RF_CHECK_STR(out, "refray diff: missing the reference image B (see: refray diff --help)\n");
-    RUN("'%s' render ok.rf --width", s.bin);
-    RF_CHECK_EQ_INT(code, 5);
-    RF_CHECK_STR(out, "refray render: --width needs a value (an integer in [1, 65536]) (see: refray render --help)\n");
-    RUN("'%s' render ok.rf -o", s.bin);
-    RF_CHECK_STR(out, "refray render: -o needs a value (FILE) (see: refray render --help)\n");
-    RUN("'%s' render ok.rf -o x.exr --quiet=yes", s.bin);
-    RF_CHECK_STR(out, "refray render: --quiet takes no value (see: refray render --help)\n");
-    RUN("'%s' render ok.rf -o x.exr --width 0", s.bin);
-    RF_CHECK_STR(out, "refray render: bad value '0' for --width: an integer in [1, 65536]\n");
-    /* did you mean: a subcommand, a long option (edit distance, a swap counts once) */
-    RUN("'%s' rendre", s.bin);
-    RF_CHECK_EQ_INT(code, 5);
-    RF_CHECK_STR(out, "refray: unknown command 'rendre'; did you mean 'render'? (see: refray --help)\n");
-    RUN("'%s' frobnicate", s.bin);
-    RF_CHECK_STR(out, "refray: unknown command 'frobnicate' (see: refray --help)\n");
-    RUN("'%s' render ok.rf -o x.exr --smaples 4", s.bin);
-    RF_CHECK_STR(out, "refray render: unknown option '--smaples'; did you mean '--samples'? (see: refray render --help)\n");
-    RUN("'%s' diff a.exr b.exr --heatmpa=h.png", s.bin);
-    RF_CHECK_STR(out, "refray diff: unknown option '--heatmpa'; did you mean '--heatmap'? (see: refray diff --help)\n");
-    RUN("'%s' ok.rf -o x.exr --mdoe flat", s.raster);
-    RF_CHECK_STR(out, "refray-raster: unknown option '--mdoe'; did you mean '--mode'? (see: refray-raster --help)\n");
-    RUN("'%s' render ok.rf -o x.exr --sa 1", s.bin); /* a unique prefix is taken (GNU); this one is not */
-    RF_CHECK_STR(out, "refray render: option '--sa' is ambiguous; possibilities: --samples --sampler "
-                      "(see: refray render --help)\n");
+    /* the exact messages: no invented position for a file that cannot be opened; what is
+     * missing, by name; did you mean (edit distance, a swap counts once); an ambiguous prefix
+     * (a unique one is taken, as GNU tools do) */
+    static const struct {
+        int raster, code;
+        const char *args, *says;
+    } msgs[] = {
+        {0, 4, "render nosuch.rf -o x.exr", "refray render: cannot open nosuch.rf: No such file or directory\n"},
+        {0, 5, "render", "refray render: missing the scene file (see: refray render --help)\n"},
+        {0, 5, "render ok.rf more.rf -o x.exr",
+         "refray render: unexpected 'more.rf' after the scene file 'ok.rf' (see: refray render --help)\n"},
+        {0, 5, "metamers extra", "refray metamers: unexpected 'extra': it takes options only (see: refray metamers --help)\n"},
+        {0, 5, "trace ok.rf 3", "refray trace: missing the pixel's Y (see: refray trace --help)\n"},
+        {0, 5, "diff a.exr", "refray diff: missing the reference image B (see: refray diff --help)\n"},
+        {0, 5, "render ok.rf --width",
+         "refray render: --width needs a value (an integer in [1, 65536]) (see: refray render --help)\n"},
+        {0, 5, "render ok.rf -o", "refray render: -o needs a value (FILE) (see: refray render --help)\n"},
+        {0, 5, "render ok.rf -o x.exr --quiet=yes", "refray render: --quiet takes no value (see: refray render --help)\n"},
+        {0, 5, "render ok.rf -o x.exr --width 0", "refray render: bad value '0' for --width: an integer in [1, 65536]\n"},
+        {0, 5, "rendre", "refray: unknown command 'rendre'; did you mean 'render'? (see: refray --help)\n"},
+        {0, 5, "frobnicate", "refray: unknown command 'frobnicate' (see: refray --help)\n"},
+        {0, 5, "render ok.rf -o x.exr --smaples 4",
+         "refray render: unknown option '--smaples'; did you mean '--samples'? (see: refray render --help)\n"},
+        {0, 5, "diff a.exr b.exr --heatmpa=h.png",
+         "refray diff: unknown option '--heatmpa'; did you mean '--heatmap'? (see: refray diff --help)\n"},
+        {1, 5, "ok.rf -o x.exr --mdoe flat",
+         "refray-raster: unknown option '--mdoe'; did you mean '--mode'? (see: refray-raster --help)\n"},
+        {0, 5, "render ok.rf -o x.exr --sa 1",
+         "refray render: option '--sa' is ambiguous; possibilities: --samples --sampler (see: refray render --help)\n"},
+    };
+    for (size_t i = 0; i < sizeof msgs / sizeof msgs[0]; i++) {
+        RUN("'%s' %s", msgs[i].raster ? s.raster : s.bin, msgs[i].args);
+        rf_test_checks++;
+        if (code != msgs[i].code || strcmp(out, msgs[i].says) != 0)
+            rf_test_fail(__FILE__, __LINE__, "`%s`: exit %d (expected %d), said:\n%s  expected:\n%s", msgs[i].args, code,
+                         msgs[i].code, out, msgs[i].says);
+    }
     RUN("'%s' render ok.rf -o x.exr --qui", s.bin);
     RF_CHECK_EQ_INT(code, 0);
     /* -V / --version and -h / --help everywhere, subcommands too */

@@ -192,14 +192,8 @@ static int parse_args(int argc, char **argv, Args *a)
         if (!ok)
             return rf_opt_bad_value(&p);
     }
-    char **ops;
-    int n = rf_opt_operands(&p, &ops);
-    if (n == 0)
-        return rf_opt_usage_error(&bench_cmd, "missing the scene file");
-    if (n > 1)
-        return rf_opt_usage_error(&bench_cmd, "one scene only, '%s' is a second", ops[1]);
-    a->scene = ops[0];
-    return -1;
+    int bad = rf_opt_operand(&p, "the scene file", &a->scene);
+    return bad ? bad : -1;
 }
 
 /* ---- measuring ---------------------------------------------------------------------------- */

@@ -410,9 +410,9 @@ int rf_cmd_chromaticity(int argc, char **argv)
         if (bad)
             return rf_opt_bad_value(&p);
     }
-    char **ops;
-    if (rf_opt_operands(&p, &ops) > 0)
-        return rf_opt_usage_error(&chroma_cmd, "unexpected '%s': the diagram takes options only", ops[0]);
+    int bad = rf_opt_operand(&p, NULL, NULL);
+    if (bad)
+        return bad;
     if (!o.out)
         return rf_opt_usage_error(&chroma_cmd, "missing the output: -o FILE.png or -o FILE.svg");
     if (!rf_arg_image_format("refray chromaticity", "-o", o.out, RF_IMAGE_PNG | RF_IMAGE_SVG))
@@ -568,9 +568,9 @@ int rf_cmd_metamers(int argc, char **argv)
         else if (key == OPT_SIZE && !rf_arg_int(p.value, 200, 8000, &m.size))
             return rf_opt_bad_value(&p);
     }
-    char **ops;
-    if (rf_opt_operands(&p, &ops) > 0)
-        return rf_opt_usage_error(&metamers_cmd, "unexpected '%s': metamers takes options only", ops[0]);
+    int bad = rf_opt_operand(&p, NULL, NULL);
+    if (bad)
+        return bad;
     if (out && !rf_arg_image_format("refray metamers", "-o", out, RF_IMAGE_PNG | RF_IMAGE_SVG))
         return RF_EXIT_USAGE;
     double lam[MET_N];

@@ -218,13 +218,9 @@ int rf_cmd_info(int argc, char **argv)
         else if (rf_arg_shared(key, p.value, &opt, NULL) < 0)
             return rf_opt_bad_value(&p);
     }
-    char **ops;
-    int n = rf_opt_operands(&p, &ops);
-    if (n == 0)
-        return rf_opt_usage_error(&info_cmd, "missing the scene file");
-    if (n > 1)
-        return rf_opt_usage_error(&info_cmd, "one scene only, '%s' is a second", ops[1]);
-    path = ops[0];
+    int bad = rf_opt_operand(&p, "the scene file", &path);
+    if (bad)
+        return bad;
     RfScene s;
     char err[512];
     if (rf_scene_load(path, &opt, &s, err, sizeof err) != RF_OK) {

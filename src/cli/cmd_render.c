@@ -200,13 +200,9 @@ int rf_cmd_render(int argc, char **argv)
         if (!ok)
             return rf_opt_bad_value(&p);
     }
-    char **operands;
-    int n_operands = rf_opt_operands(&p, &operands);
-    if (n_operands == 0)
-        return rf_opt_usage_error(&render_cmd, "missing the scene file");
-    if (n_operands > 1)
-        return rf_opt_usage_error(&render_cmd, "one scene only, '%s' is a second", operands[1]);
-    scene_path = operands[0];
+    int bad = rf_opt_operand(&p, "the scene file", &scene_path);
+    if (bad)
+        return bad;
     if (!exr && !png)
         return rf_opt_usage_error(&render_cmd, "missing the output: -o OUT.exr, -o OUT.png or --png OUT.png");
     if ((exr && !rf_arg_image_format("refray render", "-o", exr, RF_IMAGE_EXR | RF_IMAGE_PNG)) ||
@@ -228,7 +224,7 @@ int rf_cmd_render(int argc, char **argv)
             fprintf(stderr, "refray render: --resume %s: %s\n", resume, strerror(errno));
             return RF_EXIT_FILE;
         }
-        int bad = rf_arg_outputs_check("refray render", outs, 5, ins, ins[1] ? 2 : 1);
+        bad = rf_arg_outputs_check("refray render", outs, 5, ins, ins[1] ? 2 : 1);
         if (bad)
             return bad;
     }

@@ -168,6 +168,20 @@ int rf_opt_operands(const RfOptParser *p, char ***operands)
     return p->argc - p->first_operand;
 }
 
+int rf_opt_operand(const RfOptParser *p, const char *what, const char **operand)
+{
+    char **ops;
+    int n = rf_opt_operands(p, &ops), want = what != NULL;
+    if (n < want)
+        return rf_opt_usage_error(p->cmd, "missing %s", what);
+    if (n > want)
+        return what ? rf_opt_usage_error(p->cmd, "unexpected '%s' after %s '%s'", ops[1], what, ops[0])
+                    : rf_opt_usage_error(p->cmd, "unexpected '%s': it takes options only", ops[0]);
+    if (operand)
+        *operand = want ? ops[0] : NULL;
+    return 0;
+}
+
 int rf_opt_bad_value(const RfOptParser *p)
 {
     const RfOpt *o = p->current;

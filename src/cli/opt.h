@@ -59,6 +59,11 @@ int rf_opt_next(RfOptParser *p);
 /* After RF_OPT_DONE: the number of operands and *operands (in the order given, options removed). */
 int rf_opt_operands(const RfOptParser *p, char ***operands);
 
+/* After RF_OPT_DONE, for the commands that take one operand (what: "the scene file") or none
+ * (what NULL): *operand set and 0, or the exit code after "PROG: missing the scene file" or
+ * "PROG: unexpected 'X'". */
+int rf_opt_operand(const RfOptParser *p, const char *what, const char **operand);
+
 /* "PROG: bad value 'V' for --NAME: EXPECT" for the current option; returns RF_EXIT_USAGE. */
 int rf_opt_bad_value(const RfOptParser *p);
 /* "PROG: MESSAGE (see: PROG --help)"; returns RF_EXIT_USAGE. */
