@@ -5,6 +5,7 @@
  * the defaults unchanged, refray trace with the options on, and POV-Ray where installed. */
 #include "rf_test.h"
 
+#include <glob.h>
 #include <stdlib.h>
 #include <unistd.h>
 
@@ -464,6 +465,65 @@ static void t_sides_cli(void)
     rf_test_run(cmd, &code);
 }
 
+/* The options change only what they are about, on every shipped scene (40 x 30, the goldens of
+ * tests/test_render.c guard the defaults themselves): filtered shadows where nothing transmits,
+ * and two-sided surfaces where every primitive is two-sided already, give the default image bit
+ * for bit; where something transmits (gears, mount, whitted ...) filtered shadows may differ. */
+static void t_sides_defaults(void)
+{
+    glob_t g;
+    const char *pats[] = {"scenes/*.rf", "scenes/*.obj", "scenes/spd/*.nff", "scenes/spd/*.nff.gz"};
+    int flags = 0, same_filtered = 0, same_two_sided = 0;
+    for (size_t i = 0; i < sizeof pats / sizeof pats[0]; i++, flags = GLOB_APPEND)
+        glob(pats[i], flags, NULL, &g);
+    for (size_t i = 0; i < g.gl_pathc; i++) {
+        RfScene s;
+        char err[512];
+        if (rf_scene_load(g.gl_pathv[i], NULL, &s, err, sizeof err) != RF_OK) {
+            rf_test_fail(__FILE__, __LINE__, "%s", err);
+            continue;
+        }
+        int all_two_sided = 1;
+        for (size_t k = 0; k < s.prim_count; k++)
+            all_two_sided &= (s.prims[k].flags & RF_PRIM_TWO_SIDED) != 0 || s.prims[k].type == RF_PRIM_INSTANCE;
+        int transmits = (rf_scene_features(&s) & RF_FEAT_TRANSMISSION) != 0;
+        s.render.shadows = RF_SHADOWS_OPAQUE;
+        RfRenderOptions o = rf_render_options_default();
+        RfImage ref, img;
+        RfRenderStats st;
+        o.width = 40, o.height = 30, o.threads = 2;
+        if (rf_render(&s, &o, &ref, &st) != RF_OK) {
+            rf_test_fail(__FILE__, __LINE__, "%s: render failed", g.gl_pathv[i]);
+            rf_scene_free(&s);
+            continue;
+        }
+        const size_t bytes = sizeof(float) * 3 * 40 * 30;
+        if (!transmits) {
+            o.shadows = RF_SHADOWS_FILTERED;
+            RF_CHECK_EQ_INT(rf_render(&s, &o, &img, &st), RF_OK);
+            if (memcmp(ref.data, img.data, bytes) != 0)
+                rf_test_fail(__FILE__, __LINE__, "%s: filtered shadows change a scene where nothing transmits",
+                             g.gl_pathv[i]);
+            same_filtered++;
+            rf_image_free(&img);
+            o.shadows = -1;
+        }
+        if (all_two_sided) {
+            o.two_sided = 1;
+            RF_CHECK_EQ_INT(rf_render(&s, &o, &img, &st), RF_OK);
+            if (memcmp(ref.data, img.data, bytes) != 0)
+                rf_test_fail(__FILE__, __LINE__, "%s: --two-sided changes a scene that is two-sided already",
+                             g.gl_pathv[i]);
+            same_two_sided++;
+            rf_image_free(&img);
+        }
+        rf_image_free(&ref);
+        rf_scene_free(&s);
+    }
+    globfree(&g);
+    RF_CHECK(same_filtered >= 15 && same_two_sided >= 14); /* at the time of writing */
+}
+
 const RfTest rf_tests_sides[] = {
     {"sides_two_sided_back_face", t_two_sided_back_face},
     {"sides_shadows_filtered", t_shadows_filtered},
@@ -472,5 +532,6 @@ const RfTest rf_tests_sides[] = {
     {"sides_trace", t_sides_trace},
     {"sides_povray", t_sides_povray},
     {"sides_cli", t_sides_cli},
+    {"sides_defaults", t_sides_defaults},
     RF_TEST_END,
 };
