@@ -174,8 +174,47 @@ static void t_doc_matcher(void)
     RF_CHECK(!output_matches("one\n...\nsix\n", "one\ntwo\n", why, sizeof why));
 }
 
+/* The README and the comparator's report (compare/report.sh and its notes) point only to files in
+ * the repository: no "../" path, and every NAME.md they name exists (as given, or in docs/). */
+static void t_doc_no_outside_refs(void)
+{
+    static const char *const files[] = {"README.md", "compare/report.sh", "compare/report-notes.txt"};
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        FILE *f = fopen(files[i], "r");
+        char line[8192];
+        int lineno = 0;
+        RF_CHECK(f != NULL);
+        while (f && fgets(line, sizeof line, f)) {
+            lineno++;
+            rf_test_checks++;
+            if (strstr(line, "../"))
+                rf_test_fail(files[i], lineno, "a path outside the repository: %s", line);
+            for (char *p = line; (p = strstr(p, ".md")) != NULL; p += 3) {
+                char *b = p;
+                while (b > line && (strchr("_-./", b[-1]) || (b[-1] >= 'a' && b[-1] <= 'z') ||
+                                    (b[-1] >= 'A' && b[-1] <= 'Z') || (b[-1] >= '0' && b[-1] <= '9')))
+                    b--;
+                char name[512], in_docs[600];
+                snprintf(name, sizeof name, "%.*s.md", (int)(p - b), b);
+                snprintf(in_docs, sizeof in_docs, "docs/%s", name);
+                FILE *g = p > b ? fopen(name, "r") : NULL;
+                if (!g && p > b)
+                    g = fopen(in_docs, "r");
+                rf_test_checks++;
+                if (p > b && !g)
+                    rf_test_fail(files[i], lineno, "%s is not a file of the repository", name);
+                if (g)
+                    fclose(g);
+            }
+        }
+        if (f)
+            fclose(f);
+    }
+}
+
 const RfTest rf_tests_docs[] = {
     {"docs_example_matcher", t_doc_matcher},
     {"docs_examples_print_what_they_say", t_doc_examples},
+    {"docs_no_pointers_outside_the_repository", t_doc_no_outside_refs},
     RF_TEST_END,
 };
