@@ -86,6 +86,8 @@ static void t_exit_codes(void)
         {"trace", "$R trace ok.rf 1 1 --bogus", "$R trace nosuch.rf 1 1", "$R trace bad.rf 1 1", "$R trace ok.rf 1 1"},
         {"diff", "$R diff a.exr a.exr --bogus", "$R diff a.exr nosuch.exr", "$R diff a.exr bad.exr", "$R diff a.exr a.exr"},
         {"info", "$R info ok.rf --bogus", "$R info nosuch.rf", "$R info bad.rf", "$R info ok.rf"},
+        {"formula", "$R formula --bogus", "$R formula --batch nosuch.jsonl", "$R formula --batch bad.exr",
+         "$R formula dot a=1,2,3 b=4,5,6"},
         {"chromaticity", "$R chromaticity -o x.png --bogus", NULL, "$R chromaticity -o x.png --white 1",
          "$R chromaticity -o x.svg --size 200"},
         {"metamers", "$R metamers --bogus", NULL, "$R metamers --size x", "$R metamers"},
@@ -190,8 +192,8 @@ static void t_conventions(void)
     RF_CHECK_EQ_INT(code, 0);
     /* -V / --version and -h / --help everywhere, subcommands too */
     static const char *const tools[] = {"refray", "refray render", "refray merge", "refray trace", "refray diff",
-                                        "refray info", "refray chromaticity", "refray metamers", "refray bench",
-                                        "refray-raster", "refray-verify", "refray-view"};
+                                        "refray info", "refray formula", "refray chromaticity", "refray metamers",
+                                        "refray bench", "refray-raster", "refray-verify", "refray-view"};
     for (size_t i = 0; i < sizeof tools / sizeof tools[0]; i++) {
         const char *sub = strchr(tools[i], ' ');
         const char *bin = strncmp(tools[i], "refray-raster", 13) == 0   ? s.raster
@@ -224,8 +226,8 @@ static void t_help_lists_every_option(void)
     Scratch s;
     if (!scratch_open(&s))
         return;
-    static const char *const tools[] = {"render", "merge", "trace", "diff", "info", "chromaticity", "metamers", "bench",
-                                        "refray-raster", "refray-verify", "refray-view"};
+    static const char *const tools[] = {"render", "merge", "trace", "diff", "info", "formula", "chromaticity", "metamers",
+                                        "bench", "refray-raster", "refray-verify", "refray-view"};
     for (size_t i = 0; i < sizeof tools / sizeof tools[0]; i++) {
         char cmd[3 * PATH_MAX], help[1 << 14];
         int code, options = 0;
