@@ -139,9 +139,9 @@ static void t_batch_file(void)
     snprintf(cmd, sizeof cmd, "cd %s && %s formula --batch=c.jsonl --format table 2>/dev/null", dir, bin);
     out = rf_test_run(cmd, &rc);
     RF_CHECK_EQ_INT(rc, 4);
-    RF_CHECK(strstr(out, "line  id       inputs          output  value\n") == out);
-    RF_CHECK(strstr(out, "1     length   a=(6, 8)        length  10\n") != NULL);
-    RF_CHECK(strstr(out, "4     inverse  matrix=1,2;2,4  error   the matrix is singular (det = 0)\n") != NULL);
+    RF_CHECK(strstr(out, "line  id       inputs                   output  value\n") == out);
+    RF_CHECK(strstr(out, "1     length   a=(6, 8)                 length  10\n") != NULL);
+    RF_CHECK(strstr(out, "4     inverse  matrix=[[1, 2], [2, 4]]  error   the matrix is singular (det = 0)\n") != NULL);
     snprintf(cmd, sizeof cmd, "cd %s && %s formula --batch empty.jsonl 2>&1", dir, bin);
     out = rf_test_run(cmd, &rc);
     RF_CHECK_EQ_INT(rc, 4);

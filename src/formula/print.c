@@ -173,7 +173,7 @@ static void cell_str(RfFormulaTable *t, const char *s, RfFormulaFormat fmt, int 
         add_cell(t, NULL);
         return;
     }
-    if (fmt == RF_FORMULA_LATEX && code) {
+    if (fmt == RF_FORMULA_LATEX && code && *s) {
         fputs("\\texttt{", f);
         latex_text(s, f);
         fputc('}', f);
@@ -213,6 +213,9 @@ static void cell_inputs(RfFormulaTable *t, const cJSON *in, RfFormulaFormat fmt)
     const cJSON *e;
     int first = 1;
     cJSON_ArrayForEach(e, in) {
+        /* an input written as on the command line ("1,2;3,4") is shown as the numbers it is */
+        cJSON *parsed = cJSON_IsString(e) ? rf_formula_value_json(e->valuestring) : NULL;
+        const cJSON *v = parsed && !cJSON_IsString(parsed) ? parsed : e;
         if (!first)
             fputs(", ", f);
         first = 0;
@@ -220,12 +223,13 @@ static void cell_inputs(RfFormulaTable *t, const cJSON *in, RfFormulaFormat fmt)
             fputs("\\texttt{", f);
             latex_text(e->string, f);
             fputs("} = $", f);
-            value_text(e, fmt, -1, 1, f);
+            value_text(v, fmt, -1, 1, f);
             fputc('$', f);
         } else {
             fprintf(f, "%s=", e->string);
-            value_text(e, fmt, -1, 1, f);
+            value_text(v, fmt, -1, 1, f);
         }
+        cJSON_Delete(parsed);
     }
     cell_close(t, &c);
 }
