@@ -10,7 +10,8 @@
 #   make report     tracer vs. OpenGL rasterizer on every scene: report/index.html (docs/compare.md)
 #   make stress     the CGAL verifier over every ray class and scene (docs/verify.md)
 #   make mutate     plants realistic bugs one at a time: which do the tests miss? (tools/mutate.sh)
-#   make install PREFIX=/usr/local
+#   make install PREFIX=/usr/local   (DESTDIR= for staging; make uninstall removes what it put)
+#   make docs       docs/api.md from the public headers (tools/apidoc.sh)
 #   make clean
 #   Options: BUILD=dir (default build), SAN=1 (AddressSanitizer + UBSan), OPT="-O2 -g",
 #            ARCH="-march=native" (ARCH= for the portable scalar build), V=1
@@ -31,6 +32,8 @@ SANFLAGS := $(if $(SAN),-fsanitize=address$(comma)undefined -fno-sanitize-recove
 # -ffp-contract=off: results must not depend on the compiler fusing a*b+c (DESIGN.md)
 CFLAGS_ALL = -std=c99 -D_POSIX_C_SOURCE=200809L $(OPT) $(ARCH) -Wall -Wextra -Wpedantic -Werror \
              -ffp-contract=off -pthread -Iinclude -I$(BUILD)/gen $(PKG_CFLAGS) $(SANFLAGS) $(CFLAGS)
+# -fPIC: the objects go into the shared library too (compiled once; the tracer is as fast, README)
+CFLAGS_ALL += -fPIC
 # the flags that decide numeric results, recorded in every EXR the renderer writes
 NUMERIC_FLAGS = -std=c99 $(OPT) $(ARCH) -ffp-contract=off $(SANFLAGS) $(CFLAGS)
 LDFLAGS_ALL = -pthread $(SANFLAGS) $(LDFLAGS)
@@ -59,6 +62,12 @@ MESHBENCH := $(BUILD)/refray-mesh-bench
 MAKEMESH := $(BUILD)/refray-make-mesh
 
 LIB  := $(BUILD)/librefray.a
+# the shared library: its version is RF_VERSION of include/refray/version.h (the one source), its
+# soname librefray.so.MAJOR
+RF_VERSION := $(shell sed -n 's/.*define RF_VERSION "\([0-9.]*\)".*/\1/p' include/refray/version.h)
+SONAME := librefray.so.$(firstword $(subst ., ,$(RF_VERSION)))
+SO   := $(BUILD)/librefray.so.$(RF_VERSION)
+LIBDIR ?= $(PREFIX)/lib
 BIN  := $(BUILD)/refray
 TEST := $(BUILD)/refray-tests
 RASTER := $(BUILD)/refray-raster
@@ -66,11 +75,11 @@ VERIFY := $(BUILD)/refray-verify
 VIEW := $(BUILD)/refray-view
 GLFW_LIBS = $(shell pkg-config --libs glfw3 2>/dev/null || echo -lglfw)
 
-.PHONY: all test demo bench bench-run install clean report crosscheck stress mutate FORCE
-all: $(LIB) $(BIN) $(RASTER) $(VERIFY) $(VIEW)
+.PHONY: all test demo bench bench-run install uninstall docs clean report crosscheck stress mutate FORCE
+all: $(LIB) $(SO) $(BIN) $(RASTER) $(VERIFY) $(VIEW) $(BUILD)/man/refray.1 $(BUILD)/completion/refray
 
 # Dependencies: checked (and installed) once per build folder, then the flags are cached.
-NO_CONFIG_GOALS := clean
+NO_CONFIG_GOALS := clean uninstall docs
 ifneq ($(filter-out $(NO_CONFIG_GOALS),$(or $(MAKECMDGOALS),all)),)
 include $(BUILD)/config.mk
 endif
@@ -87,7 +96,7 @@ Q := $(if $(V),,@)
 # SAN or CFLAGS rebuilds everything (the flags decide numeric results, DESIGN.md)
 $(BUILD)/gen/build_info.h: $(BUILD)/config.mk FORCE
 	@mkdir -p $(dir $@)
-	@echo '#define RF_BUILD_FLAGS "$(strip $(NUMERIC_FLAGS))"' > $@.tmp
+	@echo '#define RF_BUILD_FLAGS "$(strip $(NUMERIC_FLAGS))" /* objects: -fPIC */' > $@.tmp
 	@cmp -s $@.tmp $@ && rm -f $@.tmp || mv $@.tmp $@
 FORCE:
 
@@ -100,6 +109,25 @@ $(LIB): $(call obj,$(LIB_SRC))
 	@rm -f $@
 	@$(if $(Q),echo "  AR      $@")
 	$(Q)$(AR) rcs $@ $^
+
+# only what the public headers declare is exported (a version script of those names,
+# tools/exports.sh); the rf__ and other internal functions stay inside
+$(BUILD)/gen/refray.map: $(call obj,$(LIB_SRC)) $(wildcard include/refray/*.h) tools/exports.sh
+	$(Q)sh tools/exports.sh $(call obj,$(LIB_SRC)) > $@.tmp && mv $@.tmp $@
+
+$(SO): $(call obj,$(LIB_SRC)) $(BUILD)/gen/refray.map
+	@$(if $(Q),echo "  LINK    $@")
+	$(Q)$(CC) -shared -Wl,-soname,$(SONAME) -Wl,--version-script=$(BUILD)/gen/refray.map -Wl,--no-undefined \
+	    $(LDFLAGS_ALL) -o $@ $(call obj,$(LIB_SRC)) $(LDLIBS_ALL)
+	$(Q)ln -sf $(notdir $@) $(BUILD)/$(SONAME) && ln -sf $(SONAME) $(BUILD)/librefray.so
+
+# the man pages and the bash completion, made from the commands' --help (one source)
+$(BUILD)/man/refray.1: $(BIN) $(RASTER) $(VERIFY) $(VIEW) tools/manpages.sh
+	@$(if $(Q),echo "  MAN     $(BUILD)/man")
+	$(Q)rm -rf $(BUILD)/man && sh tools/manpages.sh $(BUILD) $(BUILD)/man
+$(BUILD)/completion/refray: $(BIN) $(RASTER) $(VERIFY) $(VIEW) tools/completion.sh
+	@mkdir -p $(dir $@)
+	$(Q)sh tools/completion.sh $(BUILD) > $@.tmp && mv $@.tmp $@
 
 $(BIN): $(call obj,$(CLI_SRC)) $(LIB)
 	@$(if $(Q),echo "  LINK    $@")
@@ -140,8 +168,9 @@ $(VERIFY): $(call cxxobj,$(VERIFY_SRC)) $(BUILD)/obj/src/cli/opt.o $(LIB)
 	@$(if $(Q),echo "  LINK    $@")
 	$(Q)$(CXX) $(LDFLAGS_ALL) -o $@ $^ $(LDLIBS_ALL) -lgmp -lmpfr
 
-test: $(TEST) $(BIN) $(RASTER) $(VERIFY) $(VIEW)
-	LSAN_OPTIONS=suppressions=$(CURDIR)/compare/lsan.supp:print_suppressions=0 RF_BIN=$(BIN) RF_VERIFY=$(VERIFY) RF_TEST_DATA=tests/data $(TEST)
+test: all $(TEST)
+	LSAN_OPTIONS=suppressions=$(CURDIR)/compare/lsan.supp:print_suppressions=0 RF_BIN=$(BIN) RF_VERIFY=$(VERIFY) RF_TEST_DATA=tests/data \
+	    RF_CC="$(CC) $(SANFLAGS)" RF_VERSION=$(RF_VERSION) RF_PKGS="$(PKGS)" $(TEST)
 
 # the numerical stress suite (issue 7, docs/verify.md): every verifier class, the acne and leak
 # measurements, the optics sweep, the stress renders and the SPD scenes, one table; non-zero
@@ -182,14 +211,16 @@ bench-run: $(BIN) $(MESHBENCH) $(MAKEMESH)
 mutate: $(BIN) $(TEST)
 	@sh tools/mutate.sh
 
+# tools/install.sh: the file list in one place, written to PREFIX/share/refray/installed-files,
+# which uninstall removes exactly; refray.pc gets the real prefix. After installing into a
+# system folder as root, run ldconfig.
 install: all
-	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/include/refray
-	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/refray
-	install -m 755 $(RASTER) $(DESTDIR)$(PREFIX)/bin/refray-raster
-	install -m 755 $(VERIFY) $(DESTDIR)$(PREFIX)/bin/refray-verify
-	install -m 755 $(VIEW) $(DESTDIR)$(PREFIX)/bin/refray-view
-	install -m 644 $(LIB) $(DESTDIR)$(PREFIX)/lib/librefray.a
-	install -m 644 include/refray/*.h $(DESTDIR)$(PREFIX)/include/refray/
+	@RF_VERSION=$(RF_VERSION) RF_PKGS="$(PKGS)" sh tools/install.sh install $(BUILD) "$(DESTDIR)" $(PREFIX) $(LIBDIR)
+uninstall:
+	@sh tools/install.sh uninstall "$(DESTDIR)" $(PREFIX) $(LIBDIR)
+
+docs:
+	sh tools/apidoc.sh > docs/api.md
 
 clean:
 	rm -rf build build-san $(filter-out build build-san,$(BUILD))

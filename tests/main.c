@@ -36,6 +36,7 @@ extern const RfTest rf_tests_farm[];
 extern const RfTest rf_tests_view[];
 extern const RfTest rf_tests_trace[];
 extern const RfTest rf_tests_stat[];
+extern const RfTest rf_tests_install[];
 extern const RfTest rf_tests_cmdline[];
 extern const RfTest rf_tests_sides[];
 
@@ -58,6 +59,7 @@ static const RfTest *const suites[] = {
     rf_tests_view,
     rf_tests_trace,
     rf_tests_stat,
+    rf_tests_install,
     rf_tests_sides,
     rf_tests_cmdline,
 };

@@ -265,6 +265,11 @@ typedef struct {
      * meshes and material libraries, decompressed, in the order read), from RF_HASH_INIT; it
      * names the scene in a render's EXR header, so tiles of different scenes are not merged */
     uint64_t source_hash;
+    /* the path of every file rf_scene_load read for it, as the scene names them, in the order of
+     * source_hash (meshes and material libraries as opened, the scene file last): what refray
+     * render --deps lists for make */
+    char **files;
+    size_t file_count;
 
     /* capacities of the arrays above: private to the rf_scene_add_* functions */
     size_t material_cap, light_cap, prim_cap, vertex_cap, normal_cap, object_cap, instance_cap, motion_cap;

@@ -2,6 +2,7 @@
 #include "cli.h"
 #include "args.h"
 #include "checkpoint.h"
+#include "depfile.h"
 #include "exit_codes.h"
 #include "farm.h"
 
@@ -47,7 +48,7 @@ static void cpu_model(char *buf, size_t size)
 
 enum {
     OPT_PNG = RF_OPT_ID, OPT_DEPTH_OUT, OPT_VARIANCE, OPT_CROP, OPT_TILES, OPT_TILE, OPT_CHECKPOINT,
-    OPT_CHECKPOINT_EVERY, OPT_RESUME, OPT_QUIET
+    OPT_CHECKPOINT_EVERY, OPT_RESUME, OPT_QUIET, OPT_DEPS
 };
 
 static const RfOpt render_opts[] = {
@@ -67,6 +68,8 @@ static const RfOpt render_opts[] = {
      "a number of seconds >= 0"},
     {"resume", OPT_RESUME, "FILE", "continue an interrupted render from its checkpoint", NULL},
     {"quiet", OPT_QUIET, NULL, "no progress bar and no statistics line", NULL},
+    {"deps", OPT_DEPS, "FILE.d", "a make dependency file: the outputs depend on the scene and every file it read",
+     NULL},
     RF_OPT_TABLE_END,
 };
 
@@ -155,7 +158,8 @@ static RfStatus primary_depth(const RfScene *scene, int width, int height, RfTil
 int rf_cmd_render(int argc, char **argv)
 {
     const char *scene_path = NULL, *exr = NULL /* -o: .exr or .png */, *png = NULL, *depth_out = NULL;
-    const char *checkpoint = NULL, *resume = NULL, *variance = NULL;
+    const char *checkpoint = NULL, *resume = NULL, *variance = NULL, *deps = NULL;
+    char *deps_text = NULL; /* made while the scene still knows its files, written with the images */
     int tiles = 0, tile = -1, have_crop = 0;
     double checkpoint_every = 5.0;
     RfRenderOptions opt = rf_render_options_default();
@@ -197,6 +201,8 @@ int rf_cmd_render(int argc, char **argv)
             resume = v;
         else if (key == OPT_QUIET)
             quiet = 1;
+        else if (key == OPT_DEPS)
+            deps = v;
         if (!ok)
             return rf_opt_bad_value(&p);
     }
@@ -218,13 +224,13 @@ int rf_cmd_render(int argc, char **argv)
     char err[1024];
     RfScene scene;
     { /* the outputs, before any work: writable, not an input, not one another */
-        const char *outs[5] = {exr, png, depth_out, checkpoint, variance};
+        const char *outs[6] = {exr, png, depth_out, checkpoint, variance, deps};
         const char *ins[2] = {scene_path, resume && !rf_output_same(resume, checkpoint) ? resume : NULL};
         if (resume && access(resume, R_OK) != 0) {
             fprintf(stderr, "refray render: --resume %s: %s\n", resume, strerror(errno));
             return RF_EXIT_FILE;
         }
-        bad = rf_arg_outputs_check("refray render", outs, 5, ins, ins[1] ? 2 : 1);
+        bad = rf_arg_outputs_check("refray render", outs, 6, ins, ins[1] ? 2 : 1);
         if (bad)
             return bad;
     }
@@ -318,6 +324,11 @@ int rf_cmd_render(int argc, char **argv)
     double secs = seconds_since(prog.start);
     RfImage depth = {0, 0, 0, NULL};
     RfStatus ds = rs == RF_OK && depth_out ? primary_depth(&scene, st.width, st.height, crop, &depth) : RF_OK;
+    if (rs == RF_OK && deps) {
+        const char *targets[4] = {exr, png, depth_out, variance};
+        if (!(deps_text = rf_depfile_text(targets, 4, scene.files, scene.file_count)))
+            rs = RF_ERR_NOMEM;
+    }
     rf_scene_free(&scene);
     if (rs == RF_ERR_INTERRUPTED) {
         int done = 0, total = 0, wrote = rf_checkpoint_write_now(ckpt, &done, &total, err, sizeof err);
@@ -420,7 +431,12 @@ int rf_cmd_render(int argc, char **argv)
     } else if (rf_write_batch_commit(batch, err, sizeof err) != RF_OK) {
         fprintf(stderr, "refray render: %s\n", err);
         rc = RF_EXIT_FILE;
-    } else if (checkpoint && unlink(checkpoint) != 0 && errno != ENOENT) {
+    } else if (deps && !rf_depfile_write(deps, deps_text, err, sizeof err)) {
+        fprintf(stderr, "refray render: %s\n", err);
+        rc = RF_EXIT_FILE;
+    }
+    free(deps_text);
+    if (!rc && checkpoint && unlink(checkpoint) != 0 && errno != ENOENT) {
         fprintf(stderr, "refray render: warning: cannot remove the checkpoint %s: %s\n", checkpoint, strerror(errno));
     }
     rf_image_free(&depth);

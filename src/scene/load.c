@@ -28,7 +28,7 @@ RfStatus rf_scene_load(const char *path, const RfLoadOptions *opt, RfScene *scen
     char *text = NULL;
     size_t len = 0;
     rf_scene_init(scene);
-    RfStatus st = rf__reader_read_file(path, &text, &len, err, errsz);
+    RfStatus st = rf__reader_read_file(NULL, path, &text, &len, err, errsz);
     if (st)
         return st;
     int nff = rf__ends_with(path, base, ".nff") ||
@@ -41,6 +41,8 @@ RfStatus rf_scene_load(const char *path, const RfLoadOptions *opt, RfScene *scen
                  : rf_scene_read_rf(path, text, len, scene, err, errsz);
     if (st == RF_OK) /* after the files it included, which the readers hashed as they read them */
         scene->source_hash = rf_hash_bytes(scene->source_hash, text, len);
+    if (st == RF_OK && (st = rf__reader_add_file(scene, path, err, errsz)))
+        rf_scene_free(scene);
     free(text);
     return st;
 }

@@ -273,7 +273,7 @@ static RfStatus read_mtllib(ObjReader *r, const RfToken *kw)
         rf_lex_advance(&r->lx);
         if (!rf__reader_relative_path(r->lx.name, t.s, t.len, path, sizeof path))
             return rf_lex_error(&r->lx, t.line, t.col, "path %s is too long", rf_lex_quote(&t, q, sizeof q));
-        if (rf__reader_read_file(path, &text, &len, why, sizeof why)) {
+        if (rf__reader_read_file(r->scene, path, &text, &len, why, sizeof why)) {
             const char *msg = strstr(why, ": ") ? strstr(why, ": ") + 2 : why; /* drop "[cannot open] path: " */
             return rf_lex_error(&r->lx, t.line, t.col, "material library %s: %s",
                                 rf_lex_quote(&t, q, sizeof q), msg);

@@ -161,10 +161,32 @@ static RfStatus read_file(const char *path, int gz, char **text, size_t *len, ch
     return RF_OK;
 }
 
-RfStatus rf__reader_read_file(const char *path, char **text, size_t *len, char *err, size_t errsz)
+RfStatus rf__reader_add_file(RfScene *scene, const char *path, char *err, size_t errsz)
 {
     size_t n = strlen(path);
-    return read_file(path, rf__ends_with(path, n, ".gz"), text, len, err, errsz);
+    char **files = realloc(scene->files, (scene->file_count + 1) * sizeof *files);
+    char *copy = malloc(n + 1);
+    if (files)
+        scene->files = files;
+    if (!files || !copy) {
+        free(copy);
+        snprintf(err, errsz, "%s: out of memory", path);
+        return RF_ERR_NOMEM;
+    }
+    scene->files[scene->file_count++] = memcpy(copy, path, n + 1);
+    return RF_OK;
+}
+
+RfStatus rf__reader_read_file(RfScene *scene, const char *path, char **text, size_t *len, char *err,
+                              size_t errsz)
+{
+    size_t n = strlen(path);
+    RfStatus st = read_file(path, rf__ends_with(path, n, ".gz"), text, len, err, errsz);
+    if (!st && scene && (st = rf__reader_add_file(scene, path, err, errsz))) {
+        free(*text);
+        *text = NULL;
+    }
+    return st;
 }
 
 int rf__reader_relative_path(const char *base, const char *rel, size_t rel_len, char *out, size_t n)

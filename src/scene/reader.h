@@ -46,7 +46,11 @@ RfStatus rf__reader_finish(RfLexer *lx, RfScene *scene, RfStatus st);
 
 /* A whole file (a trailing .gz decompressed) into a malloc'd buffer; on failure err gets
  * "cannot open path: why" or "path: why", no line and column (there is no line to point at). */
-RfStatus rf__reader_read_file(const char *path, char **text, size_t *len, char *err, size_t errsz);
+RfStatus rf__reader_read_file(RfScene *scene, const char *path, char **text, size_t *len, char *err,
+                              size_t errsz);
+/* Appends path to scene->files: rf__reader_read_file does for every file it reads into a scene
+ * (scene != NULL), rf_scene_load for the scene file, which is read before the scene exists. */
+RfStatus rf__reader_add_file(RfScene *scene, const char *path, char *err, size_t errsz);
 /* Do the first n bytes of s end with suffix? */
 int rf__ends_with(const char *s, size_t n, const char *suffix);
 /* rel resolved against the folder of the file `base` (rel itself when absolute); 0 when it

@@ -727,7 +727,7 @@ static RfStatus read_mesh(RfReader *r, const RfToken *kw)
     char why[512];
     char *text = NULL;
     size_t len = 0;
-    if (rf__reader_read_file(path, &text, &len, why, sizeof why)) {
+    if (rf__reader_read_file(r->scene, path, &text, &len, why, sizeof why)) {
         const char *msg = strstr(why, ": ") ? strstr(why, ": ") + 2 : why; /* drop "[cannot open] path: " */
         return rf_lex_error(lx, file.line, file.col, "mesh %s: %s", rf_lex_quote(&file, q, sizeof q),
                             msg);

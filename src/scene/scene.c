@@ -67,6 +67,9 @@ void rf_scene_free(RfScene *scene)
     free(scene->objects);
     free(scene->instances);
     free(scene->motions);
+    for (size_t i = 0; i < scene->file_count; i++)
+        free(scene->files[i]);
+    free(scene->files);
     rf_scene_init(scene);
 }
 
