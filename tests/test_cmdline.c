@@ -188,6 +188,9 @@ static void t_conventions(void)
             rf_test_fail(__FILE__, __LINE__, "`%s`: exit %d (expected %d), said:\n%s  expected:\n%s", msgs[i].args, code,
                          msgs[i].code, out, msgs[i].says);
     }
+    RUN("'%s'", s.bin); /* no command: the list of commands, then what is missing */
+    RF_CHECK_EQ_INT(code, 5);
+    RF_CHECK(strstr(out, "commands:\n  render ") != NULL && strstr(out, "\nrefray: missing the command\n") != NULL);
     RUN("'%s' render ok.rf -o x.exr --qui", s.bin);
     RF_CHECK_EQ_INT(code, 0);
     /* -V / --version and -h / --help everywhere, subcommands too */

@@ -44,6 +44,7 @@ int main(int argc, char **argv)
     enum { N = sizeof commands / sizeof commands[0] };
     if (argc < 2) {
         usage(stderr);
+        fprintf(stderr, "refray: missing the command\n");
         return RF_EXIT_USAGE;
     }
     const char *a = argv[1];
