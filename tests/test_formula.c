@@ -427,7 +427,8 @@ static const char *batch_text(const char *lines, const RfFormulaBatchOptions *op
 }
 
 /* --check: pass, a wrong number (path, expected, got, difference), a missing output, a line's
- * own tolerance, the command-line form of an expected matrix, no expect, an error. */
+ * own tolerance, the command-line form of an expected matrix, no expect, an error; an expected
+ * error (any, or with words of its message) that comes, does not come, or is another. */
 static void t_check(void)
 {
     RfFormulaBatchOptions opt = {RF_FORMULA_JSON, -1, 1, RF_FORMULA_RTOL, RF_FORMULA_ATOL, "t.jsonl", NULL};
@@ -441,7 +442,10 @@ static void t_check(void)
         "{\"id\":\"length\",\"in\":{\"a\":[3,4]},\"expect\":{\"length\":5.001}}\n"
         "{\"id\":\"inverse\",\"in\":{\"matrix\":\"2,0;0,4\"},\"expect\":{\"inverse\":\"0.5,0;0,0.25\",\"singular\":false}}\n"
         "{\"id\":\"length\",\"in\":{\"a\":[3,4]}}\n"
-        "{\"id\":\"inverse\",\"in\":{\"matrix\":[[1,2],[2,4]]},\"expect\":{\"det\":0}}\n",
+        "{\"id\":\"inverse\",\"in\":{\"matrix\":[[1,2],[2,4]]},\"expect\":{\"det\":0}}\n"
+        "{\"id\":\"inverse\",\"in\":{\"matrix\":[[1,2],[2,4]]},\"expect\":{\"error\":\"singular\"}}\n"
+        "{\"id\":\"inverse\",\"in\":{\"matrix\":[[1,2],[2,5]]},\"expect\":{\"error\":true}}\n"
+        "{\"id\":\"inverse\",\"in\":{\"matrix\":[[1,2],[2,4]]},\"expect\":{\"error\":\"diagonal\"}}\n",
         &opt, &sum);
     const char *want =
         "line 1 (dot): pass\n"
@@ -452,12 +456,15 @@ static void t_check(void)
         "line 7 (inverse): pass\n"
         "line 8 (length): not checked (no \"expect\")\n"
         "line 9 (inverse): ERROR the matrix is singular (det = 0)\n"
-        "3 passed, 4 failed, 1 not checked\n";
+        "line 10 (inverse): pass (error: the matrix is singular (det = 0))\n"
+        "line 11 (inverse): FAIL expected an error, got {\"inverse\":[[5,-2],[-2,1]],\"singular\":false,\"det\":1}\n"
+        "line 12 (inverse): FAIL expected another error, got the matrix is singular (det = 0)\n"
+        "4 passed, 6 failed, 1 not checked\n";
     rf_test_checks++;
     if (strcmp(out, want) != 0)
         rf_test_fail(__FILE__, __LINE__, "check report:\n%s\nexpected:\n%s", out, want);
-    RF_CHECK_EQ_INT(sum.passed, 3);
-    RF_CHECK_EQ_INT(sum.failed, 4);
+    RF_CHECK_EQ_INT(sum.passed, 4);
+    RF_CHECK_EQ_INT(sum.failed, 6);
     RF_CHECK_EQ_INT(sum.worst, RF_FORMULA_FAILED);
 }
 

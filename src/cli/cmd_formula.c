@@ -45,8 +45,9 @@ static const RfCommand formula_cmd = {
     "and prints one result per case; a bad line answers {\"line\":N,\"id\":...,\"error\":...}\n"
     "and FILE:N: on stderr. --check compares each line's \"expect\":{\"dot\":11} with\n"
     "|got - expected| <= atol + rtol |expected| (per number; words, booleans and null\n"
-    "exactly) and prints 'line N (id): pass' or 'FAIL output: expected, got, difference'\n"
-    "per line and 'N passed, N failed'.\n",
+    "exactly; \"expect\":{\"error\":\"singular\"} asks for a failure whose message has\n"
+    "those words) and prints 'line N (id): pass' or 'FAIL output: expected, got,\n"
+    "difference' per line and 'N passed, N failed'.\n",
     formula_tables,
     "exit: 0 ok; 2 a formula failed (singular, degenerate, out of its domain) or a --check\n"
     "line differs; 4 the batch file is missing, unreadable or empty, or a line is not a\n"

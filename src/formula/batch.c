@@ -179,7 +179,15 @@ int rf_formula_batch(FILE *in, FILE *out, const RfFormulaBatchOptions *opt, RfFo
             cJSON_Delete(empty);
         }
         const char *name = cJSON_IsString(id) ? id->valuestring : NULL;
-        if (!o) {
+        /* --check: "expect":{"error":true} or {"error":"words of the message"} asks for a failure */
+        const cJSON *want_error = opt->check && cJSON_IsObject(expect) && f
+                                ? cJSON_GetObjectItemCaseSensitive(expect, "error") : NULL;
+        if (!cJSON_IsTrue(want_error) && !cJSON_IsString(want_error))
+            want_error = NULL;
+        int error_wanted = want_error && !o &&
+                           (cJSON_IsTrue(want_error) ||
+                            (cJSON_IsString(want_error) && strstr(error, want_error->valuestring)));
+        if (!o && !error_wanted) {
             sum->errors++;
             if (result > sum->worst)
                 sum->worst = result;
@@ -190,9 +198,20 @@ int rf_formula_batch(FILE *in, FILE *out, const RfFormulaBatchOptions *opt, RfFo
             memset(&m, 0, sizeof m);
             m.rtol = rtol;
             m.atol = atol;
-            if (!o) {
+            if (error_wanted) {
+                sum->passed++;
+                fprintf(out, "line %d (%s): pass (error: %s)\n", lineno, name, error);
+            } else if (!o || want_error) {
+                char *got = o ? rf_formula_json_text(o) : NULL;
                 sum->failed++;
-                fprintf(out, "line %d (%s): ERROR %s\n", lineno, name ? name : "no id", error);
+                if (sum->worst < RF_FORMULA_FAILED)
+                    sum->worst = RF_FORMULA_FAILED;
+                if (want_error && o)
+                    fprintf(out, "line %d (%s): FAIL expected an error, got %s\n", lineno, name, got ? got : "?");
+                else
+                    fprintf(out, "line %d (%s): %s %s\n", lineno, name ? name : "no id",
+                            want_error ? "FAIL expected another error, got" : "ERROR", error);
+                free(got);
             } else if (!expect) {
                 sum->unchecked++;
                 fprintf(out, "line %d (%s): not checked (no \"expect\")\n", lineno, name);

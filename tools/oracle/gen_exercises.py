@@ -67,6 +67,10 @@ case("transform-direction", {"matrix": "1,0,0,1;0,1,0,2;0,0,1,3;0,0,0,1", "x": [
 A, bb = np.array([[1, 2], [3, 4.0]]), np.array([5, 6.0])
 case("affine", {"a": "1,2;3,4", "b": "5,6", "x": [1, 1]},
      {"y": L(A @ [1, 1] + bb), "matrix_h": [[1, 2, 5], [3, 4, 6], [0, 0, 1]]})
+# a singular matrix has no inverse: the sheet expects the error (numpy: det = 0, rank 1)
+Sing = np.array([[1, 2], [2, 4.0]])
+assert np.linalg.matrix_rank(Sing) == 1
+case("inverse", {"matrix": "1,2;2,4"}, {"error": "singular"})
 S = np.diag([2.0, 1, 1])
 case("transform-normal", {"matrix": "2,0,0;0,1,0;0,0,1", "n": [1, 1, 0]},
      {"n": L(unit(np.linalg.inv(S).T @ [1, 1, 0])), "similarity": False})
