@@ -112,29 +112,40 @@ void rf__ex_note(RfExCtx *c, RfSrcLoc loc, int problem, const char *fmt, ...)
     ex->notes_len += n;
 }
 
-const char *rf__ex_num(RfExCtx *c, double x)
+/* The shortest of %.15g, %.16g, %.17g that reads back as x, into b. */
+static void shortest(char *b, size_t size, double x)
 {
-    char *b = c->ring[c->ring_next];
-    c->ring_next = (c->ring_next + 1) % RF_EX_RING;
     if (x == 0.0) /* no "-0" in another renderer's file */
         x = 0.0;
     for (int p = 15; p <= 17; p++) {
-        snprintf(b, sizeof c->ring[0], "%.*g", p, x);
+        snprintf(b, size, "%.*g", p, x);
         if (strtod(b, NULL) == x)
             break;
     }
+}
+
+static char *ring_slot(RfExCtx *c)
+{
+    char *b = c->ring[c->ring_next];
+    c->ring_next = (c->ring_next + 1) % RF_EX_RING;
+    return b;
+}
+
+const char *rf__ex_num(RfExCtx *c, double x)
+{
+    char *b = ring_slot(c);
+    shortest(b, RF_EX_SLOT, x);
     return b;
 }
 
 const char *rf__ex_vec(RfExCtx *c, RfVec3 v, const char *sep)
 {
-    char a[3][40];
+    char a[3][32];
     double x[3] = {v.x, v.y, v.z};
     for (int i = 0; i < 3; i++)
-        snprintf(a[i], sizeof a[i], "%s", rf__ex_num(c, x[i]));
-    char *b = c->ring[c->ring_next];
-    c->ring_next = (c->ring_next + 1) % RF_EX_RING;
-    snprintf(b, sizeof c->ring[0], "%s%s%s%s%s", a[0], sep, a[1], sep, a[2]);
+        shortest(a[i], sizeof a[i], x[i]);
+    char *b = ring_slot(c);
+    snprintf(b, RF_EX_SLOT, "%s%s%s%s%s", a[0], sep, a[1], sep, a[2]);
     return b;
 }
 

@@ -7,7 +7,7 @@
 #include "refray/scene.h"
 #include "refray/scene_export.h"
 
-#define RF_EX_RING 16
+#define RF_EX_RING 32
 #define RF_EX_SLOT 160
 
 typedef struct {
@@ -53,8 +53,9 @@ void rf__ex_note(RfExCtx *c, RfSrcLoc loc, int problem, const char *fmt, ...)
 #endif
     ;
 
-/* The shortest of %.15g, %.16g, %.17g that reads back as x (a slot of the context's ring: valid
- * for the next RF_EX_RING - 1 calls). */
+/* The shortest of %.15g, %.16g, %.17g that reads back as x, in a slot of the context's ring:
+ * valid for the next RF_EX_RING - 1 calls of rf__ex_num, rf__ex_vec, rf__ex_rgb (one slot each),
+ * so one printf may take up to RF_EX_RING of them. */
 const char *rf__ex_num(RfExCtx *c, double x);
 /* Three numbers joined by sep ("x, y, z" with ", "). */
 const char *rf__ex_vec(RfExCtx *c, RfVec3 v, const char *sep);

@@ -2,6 +2,7 @@
  * tools/nff2pov.py, whose conventions were checked: POV-Ray agrees with refray to its half-float
  * EXR rounding on whitted and the SPD balls, rings, tetra and tree). docs/crosscheck.md. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -92,6 +93,15 @@ static void opaque_shadow_discs(RfExCtx *c, const RfPrimitive *p)
     }
 }
 
+/* "  material { M<index> } }\n": the end of an object */
+static const char *material_ref(RfExCtx *c, int index)
+{
+    char *b = c->ring[c->ring_next]; /* a slot of the ring, as the numbers beside it */
+    c->ring_next = (c->ring_next + 1) % RF_EX_RING;
+    snprintf(b, RF_EX_SLOT, "  material { M%d } }\n", index);
+    return b;
+}
+
 static void write_light(RfExCtx *c, const RfLight *l, double fade, RfVec3 centre, double extent)
 {
     int inv_sq = l->kind != RF_LIGHT_DIRECTIONAL && l->falloff == RF_FALLOFF_INVERSE_SQUARE;
@@ -122,7 +132,8 @@ static void write_light(RfExCtx *c, const RfLight *l, double fade, RfVec3 centre
     rf__ex_printf(c, " }\n");
 }
 
-static void write_prim(RfExCtx *c, const RfPrimitive *p, size_t *one_sided, RfSrcLoc *first_one_sided)
+static void write_prim(RfExCtx *c, const RfPrimitive *p, size_t *one_sided, RfSrcLoc *first_one_sided,
+                       int *smooth_noted)
 {
     const RfScene *s = c->s;
     const RfMaterial *m = &s->materials[p->material];
@@ -151,16 +162,20 @@ static void write_prim(RfExCtx *c, const RfPrimitive *p, size_t *one_sided, RfSr
         const RfVec3 *v = s->vertices + p->u.poly.first;
         int n = p->u.poly.count;
         if (smooth) {
-            rf__ex_note(c, p->loc, 1, "%s with vertex normals: POV-Ray's smooth_triangle interpolates the normal "
-                        "its own way, refray barycentrically (written as smooth triangles)",
-                        rf_prim_type_name(p->type));
+            if (!*smooth_noted) /* once: the SPD teapot has thousands */
+                rf__ex_note(c, p->loc, 0, "%s with vertex normals (the first here), written as smooth_triangle: "
+                            "where a shadow or mirror ray leaves a smoothed surface on the wrong side of its "
+                            "geometric one, each renderer has its own rule (docs/crosscheck.md)",
+                            rf_prim_type_name(p->type));
+            *smooth_noted = 1;
+            /* standalone triangles: POV-Ray drops a degenerate one with a warning, where an empty
+             * mesh would be a parse error */
             const RfVec3 *nv = s->normals + p->u.poly.nfirst;
-            rf__ex_printf(c, "mesh {\n");
-            for (int k = 1; k + 1 < n; k++)
-                rf__ex_printf(c, "  smooth_triangle { <%s>, <%s>, <%s>, <%s>, <%s>, <%s> }\n",
-                              rf__ex_vec(c, v[0], ", "), rf__ex_vec(c, nv[0], ", "), rf__ex_vec(c, v[k], ", "),
-                              rf__ex_vec(c, nv[k], ", "), rf__ex_vec(c, v[k + 1], ", "),
-                              rf__ex_vec(c, nv[k + 1], ", "));
+            for (int k = 1; k + 1 < n; k++) /* the last one is closed below, as every object */
+                rf__ex_printf(c, "smooth_triangle { <%s>, <%s>, <%s>, <%s>, <%s>, <%s>\n%s", rf__ex_vec(c, v[0], ", "),
+                              rf__ex_vec(c, nv[0], ", "), rf__ex_vec(c, v[k], ", "), rf__ex_vec(c, nv[k], ", "),
+                              rf__ex_vec(c, v[k + 1], ", "), rf__ex_vec(c, nv[k + 1], ", "),
+                              k + 2 < n ? material_ref(c, p->material) : "");
         } else if (n == 3) {
             rf__ex_printf(c, "triangle { <%s>, <%s>, <%s>\n", rf__ex_vec(c, v[0], ", "), rf__ex_vec(c, v[1], ", "),
                           rf__ex_vec(c, v[2], ", "));
@@ -176,7 +191,7 @@ static void write_prim(RfExCtx *c, const RfPrimitive *p, size_t *one_sided, RfSr
     case RF_PRIM_TYPE_COUNT:
         return;
     }
-    rf__ex_printf(c, "  material { M%d } }\n", p->material);
+    rf__ex_printf(c, "%s", material_ref(c, p->material));
     if (p->type == RF_PRIM_SPHERE && positive_kt(m) && !c->filtered)
         opaque_shadow_discs(c, p);
     else if (positive_kt(m) && !c->filtered)
@@ -233,10 +248,11 @@ void rf__export_pov(RfExCtx *c)
             write_material(c, &s->materials[i], i);
     free(used);
     size_t one_sided = 0;
+    int smooth_noted = 0;
     RfSrcLoc first = {0, 0};
     for (size_t i = 0; i < s->prim_count; i++)
         if (!(s->prims[i].flags & RF_PRIM_IN_OBJECT))
-            write_prim(c, &s->prims[i], &one_sided, &first);
+            write_prim(c, &s->prims[i], &one_sided, &first, &smooth_noted);
     if (one_sided)
         rf__ex_note(c, first, 0, "%zu one-sided primitives (the first here): POV-Ray shows their back sides too "
                     "(render refray with --two-sided to compare where a back side is seen)", one_sided);
