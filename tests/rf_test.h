@@ -4,6 +4,7 @@
 #ifndef RF_TEST_H
 #define RF_TEST_H
 
+#include <glob.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -36,6 +37,9 @@ int rf_test_have(const char *program);
 int rf_test_tool(const char *name, char *out, size_t size);
 /* The value of all.NAME in `refray diff --kv` output, NAN when absent. */
 double rf_test_diff_kv(const char *out, const char *name);
+/* Every shipped scene into g (globfree it): the .rf files of scenes/, its .obj files when
+ * with_obj, and the NFF files of scenes/spd/ (.nff, .nff.gz). */
+void rf_test_shipped_scenes(glob_t *g, int with_obj);
 
 #define RF_CHECK(cond)                                                                       \
     do {                                                                                     \

@@ -77,10 +77,8 @@ static int scene_rays(const RfScene *s, const RfTracer *t, RfTestRng *rng, RfRay
 static void t_accel_scenes_vs_brute_force(void)
 {
     glob_t g;
-    const char *pats[] = {"scenes/*.rf", "scenes/*.obj", "scenes/spd/*.nff", "scenes/spd/*.nff.gz"};
-    int flags = 0, scenes = 0;
-    for (size_t i = 0; i < sizeof pats / sizeof pats[0]; i++, flags = GLOB_APPEND)
-        glob(pats[i], flags, NULL, &g);
+    int scenes = 0;
+    rf_test_shipped_scenes(&g, 1);
     for (size_t i = 0; i < g.gl_pathc; i++) {
         const char *path = g.gl_pathv[i];
         RfScene s;
@@ -133,10 +131,7 @@ static void t_accel_scenes_vs_brute_force(void)
 static void t_accel_images(void)
 {
     glob_t g;
-    const char *pats[] = {"scenes/*.rf", "scenes/spd/*.nff", "scenes/spd/*.nff.gz"};
-    int flags = 0;
-    for (size_t i = 0; i < sizeof pats / sizeof pats[0]; i++, flags = GLOB_APPEND)
-        glob(pats[i], flags, NULL, &g);
+    rf_test_shipped_scenes(&g, 0);
     for (size_t i = 0; i < g.gl_pathc; i++) {
         RfScene s;
         char err[512];

@@ -27,10 +27,8 @@ static int render(const RfScene *s, unsigned kernel, int samples, int local, RfI
 static void t_kernels_identical(void)
 {
     glob_t g;
-    const char *pats[] = {"scenes/*.rf", "scenes/*.obj", "scenes/spd/*.nff", "scenes/spd/*.nff.gz"};
-    int flags = 0, compared = 0, specialised = 0;
-    for (size_t i = 0; i < sizeof pats / sizeof pats[0]; i++, flags = GLOB_APPEND)
-        glob(pats[i], flags, NULL, &g);
+    int compared = 0, specialised = 0;
+    rf_test_shipped_scenes(&g, 1);
     for (size_t i = 0; i < g.gl_pathc; i++) {
         RfScene s;
         char err[512];

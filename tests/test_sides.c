@@ -4,6 +4,7 @@
  * Hand-derived pixels, the teapot's lid gap, the walk against an independent count of crossings,
  * the defaults unchanged, refray trace with the options on, and POV-Ray where installed. */
 #include "rf_test.h"
+#include "rf_test_trace.h"
 
 #include <glob.h>
 #include <stdlib.h>
@@ -54,31 +55,35 @@ static int centre(const RfScene *s, RfRenderOptions o, float out[3])
 
 static void t_two_sided_back_face(void)
 {
-    RfScene s;
-    float px[3];
-    RfRenderOptions o = rf_render_options_default();
-    /* the light in front of the camera's side, at (0, 3, 4) from the hit: L = (0, 0.6, 0.8) */
-    if (!load_text(1, BACK_TRIANGLE("l 0 3 4\n"), &s))
-        return;
-    /* one-sided: the ray passes through the back face to the background */
-    if (centre(&s, o, px))
-        CHECK_RGB(px, 0.1, 0.2, 0.3);
-    /* two-sided: hit, normal turned to the ray (0, 0, 1); NFF light 1/sqrt(1) = 1, no falloff;
-     * kd = 0.8 (1, 0.5, 0.25); colour = kd I (N.L) = (0.8, 0.4, 0.2) 0.8 */
-    o.two_sided = 1;
-    if (centre(&s, o, px))
-        CHECK_RGB(px, 0.64, 0.32, 0.16);
-    rf_scene_free(&s);
-    /* the light behind the triangle (on its front side): a back face seen from the camera's
-     * side is not lit through the surface: black, where the one-sided render shows the sky */
-    if (!load_text(1, BACK_TRIANGLE("l 0 3 -4\n"), &s))
-        return;
-    if (centre(&s, o, px))
-        CHECK_RGB(px, 0.0, 0.0, 0.0);
-    o.two_sided = 0;
-    if (centre(&s, o, px))
-        CHECK_RGB(px, 0.1, 0.2, 0.3);
-    rf_scene_free(&s);
+    static const struct {
+        const char *light;
+        int two_sided;
+        double rgb[3];
+    } cases[] = {
+        /* one-sided: the ray passes through the back face to the background */
+        {"l 0 3 4\n", 0, {0.1, 0.2, 0.3}},
+        /* two-sided: hit, normal turned to the ray (0, 0, 1); the light at (0, 3, 4) from the
+         * hit: L = (0, 0.6, 0.8); NFF light 1/sqrt(1) = 1, no falloff; kd = 0.8 (1, 0.5, 0.25);
+         * colour = kd I (N.L) = (0.8, 0.4, 0.2) 0.8 */
+        {"l 0 3 4\n", 1, {0.64, 0.32, 0.16}},
+        /* the light behind the triangle (on its front side): a back face seen from the camera's
+         * side is not lit through the surface: black, where the one-sided render shows the sky */
+        {"l 0 3 -4\n", 1, {0.0, 0.0, 0.0}},
+        {"l 0 3 -4\n", 0, {0.1, 0.2, 0.3}},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[512];
+        RfScene s;
+        float px[3];
+        snprintf(text, sizeof text, BACK_TRIANGLE("%s"), cases[i].light);
+        if (!load_text(1, text, &s))
+            continue;
+        RfRenderOptions o = rf_render_options_default();
+        o.two_sided = cases[i].two_sided;
+        if (centre(&s, o, px))
+            CHECK_RGB(px, cases[i].rgb[0], cases[i].rgb[1], cases[i].rgb[2]);
+        rf_scene_free(&s);
+    }
 }
 
 /* The floor at z = 0 under a point light at (0, 4, 3) (no falloff, I = 1): N.L = 0.6; ambient
@@ -270,22 +275,6 @@ static void t_two_sided_teapot(void)
     rf_scene_free(&s);
 }
 
-#define MAX_EV 2048
-typedef struct {
-    RfTraceEvent ev[MAX_EV];
-    int n;
-} Log;
-
-static void collect(void *ctx, const RfTraceEvent *e)
-{
-    Log *l = ctx;
-    if (l->n < MAX_EV) {
-        l->ev[l->n] = *e;
-        l->ev[l->n].hit = NULL;
-        l->n++;
-    }
-}
-
 /* refray trace with the options on reproduces the render's pixel bit for bit: whitted with
  * filtered shadows (the first pixels where the glass sphere's shadow differs from the opaque
  * one, whose light events report a transmittance strictly between 0 and 1) and the teapot with
@@ -293,7 +282,7 @@ static void collect(void *ctx, const RfTraceEvent *e)
 static void t_sides_trace(void)
 {
     static const char *scenes[] = {"scenes/whitted.rf", "scenes/spd/teapot.nff"};
-    Log *log = malloc(sizeof *log);
+    RfTestTraceLog *log = malloc(sizeof *log);
     for (int f = 0; f < 2; f++) {
         RfScene s;
         char err[512];
@@ -320,7 +309,7 @@ static void t_sides_trace(void)
             int x = p % w, y = p / w;
             log->n = 0;
             o.crop = (RfTile){x, y, x + 1, y + 1, 0};
-            o.trace = collect, o.trace_ctx = log;
+            o.trace = rf_test_trace_collect, o.trace_ctx = log;
             RF_CHECK_EQ_INT(rf_render(&s, &o, &one, &st), RF_OK);
             const RfTraceEvent *last = &log->ev[log->n - 1];
             float got[3] = {(float)last->color.r, (float)last->color.g, (float)last->color.b};
@@ -358,7 +347,7 @@ static void t_sides_trace(void)
         centre(&s, o, px);
         log->n = 0;
         o.crop = (RfTile){1, 1, 2, 2, 0};
-        o.trace = collect, o.trace_ctx = log;
+        o.trace = rf_test_trace_collect, o.trace_ctx = log;
         RF_CHECK_EQ_INT(rf_render(&s, &o, &one, &st), RF_OK);
         int lights = 0;
         for (int i = 0; i < log->n; i++)
@@ -472,10 +461,8 @@ static void t_sides_cli(void)
 static void t_sides_defaults(void)
 {
     glob_t g;
-    const char *pats[] = {"scenes/*.rf", "scenes/*.obj", "scenes/spd/*.nff", "scenes/spd/*.nff.gz"};
-    int flags = 0, same_filtered = 0, same_two_sided = 0;
-    for (size_t i = 0; i < sizeof pats / sizeof pats[0]; i++, flags = GLOB_APPEND)
-        glob(pats[i], flags, NULL, &g);
+    int same_filtered = 0, same_two_sided = 0;
+    rf_test_shipped_scenes(&g, 1);
     for (size_t i = 0; i < g.gl_pathc; i++) {
         RfScene s;
         char err[512];

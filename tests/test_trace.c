@@ -4,6 +4,7 @@
  * reports add up, in the kernel's order, to what each ray returns: local + sum of weight x the
  * child ray's colour. The command's JSON parses and says the same. */
 #include "rf_test.h"
+#include "rf_test_trace.h"
 
 #include <cJSON.h>
 #include <stdlib.h>
@@ -11,26 +12,9 @@
 #include "refray/render.h"
 #include "refray/scene_io.h"
 
-#define MAX_EV 4096
-
-typedef struct {
-    RfTraceEvent ev[MAX_EV];
-    int n;
-} Log;
-
-static void collect(void *ctx, const RfTraceEvent *e)
-{
-    Log *l = ctx;
-    if (l->n < MAX_EV) {
-        l->ev[l->n] = *e;
-        l->ev[l->n].hit = NULL; /* valid only during the call */
-        l->n++;
-    }
-}
-
 /* Replays the events of one ray starting at index *i (its HIT or MISS at `depth`): returns the
  * colour the kernel's arithmetic gives from the reported numbers, checks it against the RESULT. */
-static RfRgb replay(const Log *l, int *i, int depth, int *bad)
+static RfRgb replay(const RfTestTraceLog *l, int *i, int depth, int *bad)
 {
     const RfTraceEvent *e = &l->ev[*i];
     if (e->kind == RF_TRACE_MISS) {
@@ -82,7 +66,7 @@ static void t_trace_reproduces_pixels(void)
     /* (x, y) of a 160 x 120 whitted: ground, red sphere, mirror, glass, sky */
     static const int px[][2] = {{75, 75}, {35, 60}, {82, 50}, {112, 70}, {80, 5}};
     static const int spp[] = {1, 4};
-    Log *log = malloc(sizeof *log);
+    RfTestTraceLog *log = malloc(sizeof *log);
     for (int si = 0; si < 2; si++) {
         RfRenderOptions o = rf_render_options_default();
         RfRenderStats st;
@@ -94,9 +78,9 @@ static void t_trace_reproduces_pixels(void)
             RfImage one;
             log->n = 0;
             o.crop = (RfTile){px[k][0], px[k][1], px[k][0] + 1, px[k][1] + 1, 0};
-            o.trace = collect, o.trace_ctx = log;
+            o.trace = rf_test_trace_collect, o.trace_ctx = log;
             RF_CHECK_EQ_INT(rf_render(&s, &o, &one, &st), RF_OK);
-            RF_CHECK(log->n > 0 && log->n < MAX_EV && log->ev[log->n - 1].kind == RF_TRACE_PIXEL);
+            RF_CHECK(log->n > 0 && log->n < RF_TEST_TRACE_MAX && log->ev[log->n - 1].kind == RF_TRACE_PIXEL);
             const float *w = whole.data + ((size_t)px[k][1] * 160 + (size_t)px[k][0]) * 3;
             float got[3] = {(float)log->ev[log->n - 1].color.r, (float)log->ev[log->n - 1].color.g,
                             (float)log->ev[log->n - 1].color.b};
@@ -134,7 +118,7 @@ static void t_trace_reproduces_pixels(void)
     RfRenderOptions o = rf_render_options_default();
     RfRenderStats st;
     RfImage img;
-    o.width = 16, o.height = 12, o.trace = collect, o.trace_ctx = log;
+    o.width = 16, o.height = 12, o.trace = rf_test_trace_collect, o.trace_ctx = log;
     RF_CHECK_EQ_INT(rf_render(&s, &o, &img, &st), RF_ERR_DOMAIN);
     free(log);
     rf_scene_free(&s);

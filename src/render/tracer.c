@@ -717,6 +717,16 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
     return 1;
 }
 
+/* A query of one kind (Query.shadow, Query.both) at the time of the motion state ms. */
+static inline void query_init(Query *q, const RfTracer *t, int shadow, int both, const RfMotionState *ms)
+{
+    q->tracer = t;
+    q->shadow = shadow;
+    q->both = both;
+    q->instanced = 0;
+    q->motion = ms;
+}
+
 /* The nearest (or, shadow = 1, any) hit in [t_min, t_max); returns 1 with q->hit/q->item. */
 static int trace_query(const RfTracer *t, Query *q, RfRay ray, double t_min, double t_max)
 {
@@ -729,9 +739,7 @@ static int trace_query(const RfTracer *t, Query *q, RfRay ray, double t_min, dou
 int rf_tracer_occluded(const RfTracer *t, RfRay ray, double t_min, double t_max)
 {
     Query q;
-    q.shadow = 1;
-    q.both = 0;
-    q.motion = NULL;
+    query_init(&q, t, 1, 0, NULL);
     return trace_query(t, &q, ray, t_min, t_max);
 }
 
@@ -744,11 +752,7 @@ int rf_tracer_occluded_cached_at(const RfTracer *t, RfRay ray, const RfMotionSta
                                  uint64_t *last)
 {
     Query q;
-    q.tracer = t;
-    q.shadow = 1;
-    q.both = 0;
-    q.instanced = 0;
-    q.motion = ms;
+    query_init(&q, t, 1, 0, ms);
     if (*last) { /* the occluder of the last query first: neighbouring shadow rays share it */
         double tt;
         if (hit_item(&q, key_item(*last), ray, NULL, t_min, t_max, &tt))
@@ -767,11 +771,7 @@ RfRgb rf_tracer_transmittance_at(const RfTracer *t, RfRay ray, const RfMotionSta
 {
     const RfRgb zero = rf_rgb(0, 0, 0);
     Query q;
-    q.tracer = t;
-    q.shadow = 1;
-    q.both = 0;
-    q.instanced = 0;
-    q.motion = ms;
+    query_init(&q, t, 1, 0, ms);
     /* the last primitive that blocked alone: any hit on it gives 0, as the walk would */
     if (*last && hit_item(&q, key_item(*last), ray, NULL, t_min, t_max, &(double){0}))
         return zero;
@@ -803,9 +803,7 @@ int rf_tracer_intersect_at(const RfTracer *t, RfRay ray, const RfMotionState *ms
                            RfSurfaceHit *out)
 {
     Query q;
-    q.shadow = 0;
-    q.both = t->opt.two_sided;
-    q.motion = ms;
+    query_init(&q, t, 0, t->opt.two_sided, ms);
     if (!trace_query(t, &q, ray, t_min, t_max))
         return -1;
     const RfScene *s = t->scene;
