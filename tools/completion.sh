@@ -56,8 +56,13 @@ cat <<'EOF'
         fi
         cmd="refray ${COMP_WORDS[1]}"
     fi
-    # --opt=value: complete the value
-    if [[ $cur == --*=* ]]; then
+    # --opt=value: complete the value; bash splits "--opt=v" into "--opt" "=" "v" (its
+    # COMP_WORDBREAKS), and without that into one word
+    if [[ $cur == = ]]; then
+        cur=""
+    elif [[ $prev == = ]]; then
+        prev=${COMP_WORDS[COMP_CWORD - 2]}
+    elif [[ $cur == --*=* ]]; then
         prev=${cur%%=*}
         cur=${cur#*=}
     fi
