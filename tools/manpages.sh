@@ -42,6 +42,8 @@ page() {
         state == 0 { if ($0 != "" || pre != "") pre = pre esc($0) "\n"; next }
         state == 1 && ($0 ~ /^ +\[/ || $0 ~ /^ +refray/) { sub(/^       /, ""); print esc($0); next }
         state == 1 { print ".fi"; state = 2; if ($0 == "") next }
+        # a label line of the help ("options:", "commands:", "keys:") becomes a subsection
+        /^[A-Za-z][A-Za-z ]*:$/ { describe(); sub(/:$/, ""); printf ".fi\n.SS %s\n.nf\n", toupper(esc($0)); next }
         { describe(); print esc($0) }
         END {
             if (state == 1) print ".fi"
