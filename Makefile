@@ -25,7 +25,7 @@ OPT     ?= -O2 -g
 ARCH    ?= -march=native -mno-avx512f
 SAN     ?=
 # the Debian pkg-config modules the library links against (tools/deps.sh installs them)
-PKGS    := libcjson cairo fontconfig zlib libpng OpenEXR
+PKGS    := libcjson cairo fontconfig zlib libpng OpenEXR stb netpbm libtiff-4
 
 comma := ,
 SANFLAGS := $(if $(SAN),-fsanitize=address$(comma)undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)

@@ -13,7 +13,7 @@ FUZZ_OPT     ?= -O1 -g
 FUZZ_ARCH    ?= -march=native -mno-avx512f
 FUZZ_TARGETS ?= nff rf obj mtl exr png formula
 
-FUZZ_PKGS := libcjson cairo fontconfig zlib libpng OpenEXR
+FUZZ_PKGS := libcjson cairo fontconfig zlib libpng OpenEXR stb netpbm libtiff-4
 FUZZ_PKG_CFLAGS := $(shell pkg-config --cflags $(FUZZ_PKGS))
 FUZZ_PKG_LIBS := $(shell pkg-config --libs $(FUZZ_PKGS))
 

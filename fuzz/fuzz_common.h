@@ -264,7 +264,7 @@ static inline void rf_fuzz_image(const RfImage *img, const char *dir)
             (void)rf_diff_images(img, &b, NULL, NULL, &o, &res, mask, err, sizeof err);
             (void)rf_diff_images(img, img, NULL, NULL, &o, &res, NULL, err, sizeof err);
             (void)rf_diff_percent(res.all.above_fail, &res.all);
-            if (rf_diff_heatmap(img, &b, mask, &heat) == RF_OK)
+            if (rf_diff_heatmap(img, &b, mask, &o, &heat) == RF_OK)
                 rf_image_free(&heat);
         }
         rf_image_free(&b);

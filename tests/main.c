@@ -36,8 +36,9 @@ extern const RfTest rf_tests_farm[];
 extern const RfTest rf_tests_view[];
 extern const RfTest rf_tests_trace[];
 extern const RfTest rf_tests_stat[];
-extern const RfTest rf_tests_install[];
+extern const RfTest rf_tests_grade[];
 extern const RfTest rf_tests_cmdline[];
+extern const RfTest rf_tests_install[];
 extern const RfTest rf_tests_sides[];
 
 static const RfTest *const suites[] = {
@@ -59,6 +60,7 @@ static const RfTest *const suites[] = {
     rf_tests_view,
     rf_tests_trace,
     rf_tests_stat,
+    rf_tests_grade,
     rf_tests_install,
     rf_tests_sides,
     rf_tests_cmdline,

@@ -50,6 +50,9 @@ static void t_errors(void)
     out = run("formula crosss a=1,0,0 b=0,1,0 2>&1", &rc);
     RF_CHECK_EQ_INT(rc, 5);
     RF_CHECK(strstr(out, "did you mean 'cross'?") != NULL);
+    out = run("formula crosss --help 2>&1", &rc);
+    RF_CHECK_EQ_INT(rc, 5);
+    RF_CHECK(strcmp(out, "refray formula: unknown id 'crosss'; did you mean 'cross'? (see: refray formula list)\n") == 0);
     out = run("formula inverse matrix=1,2,2,4 2>&1", &rc);
     RF_CHECK_EQ_INT(rc, 2);
     RF_CHECK(strcmp(out, "refray formula inverse: the matrix is singular (det = 0)\n") == 0);

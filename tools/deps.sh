@@ -56,11 +56,12 @@ if [ "${1:-}" = bench ]; then
         "the anchors are missing; for the full comparison run: sudo apt-get install%s%.0s" "$@"
 fi
 PACKAGES="build-essential pkg-config libcjson-dev libpng-dev libopenexr-dev libosmesa6-dev libegl-dev libegl-mesa0 \
-libglfw3-dev libcgal-dev libgmp-dev libmpfr-dev libcairo2-dev libfontconfig-dev zlib1g-dev"
+libglfw3-dev libcgal-dev libgmp-dev libmpfr-dev libcairo2-dev libfontconfig-dev zlib1g-dev \
+libstb-dev libnetpbm-dev libtiff-dev"
 
 # pkg-config modules that the build links against; CGAL is header-only, so its header is checked.
 missing() {
-    for m in libcjson libpng OpenEXR osmesa egl glfw3 cairo fontconfig zlib; do
+    for m in libcjson libpng OpenEXR osmesa egl glfw3 cairo fontconfig zlib stb netpbm libtiff-4; do
         pkg-config --exists "$m" 2>/dev/null || echo "$m"
     done
     [ -f /usr/include/CGAL/version.h ] || echo "CGAL"

@@ -30,6 +30,9 @@ typedef struct {
     double fail_mean;           /* default 1e-4; INFINITY: off */
     double hardfail;            /* default INFINITY (off) */
     double depth_edge;          /* silhouette threshold, rf_diff_silhouettes; default 0.01 */
+    int edge_tolerant;          /* default 0; 1: a pixel's error is the smallest over B's 3x3
+                                   neighbourhood (rf_diff_pixel_error): aliasing at silhouettes
+                                   and half-pixel offsets are forgiven */
 } RfDiffOptions;
 
 RfDiffOptions rf_diff_options_default(void);
@@ -53,6 +56,12 @@ typedef struct {
     RfDiffVerdict verdict;
 } RfDiffResult;
 
+/* A pixel's error: the largest |A - B| over its channels (the first three, or one), INFINITY when
+ * a value is NaN or Inf. edge_tolerant: the smallest such error between A's pixel (x, y) and the
+ * pixels of B's 3x3 neighbourhood of (x, y) that lie inside the image. *bx, *by (may be NULL) get
+ * the B pixel that gave it. A and B have the same size. */
+double rf_diff_pixel_error(const RfImage *a, const RfImage *b, int x, int y, int edge_tolerant, int *bx, int *by);
+
 /* Share of s.pixels in percent (0 for no pixels). */
 double rf_diff_percent(long count, const RfDiffStats *s);
 const char *rf_diff_verdict_name(RfDiffVerdict v); /* "PASS", "WARN", "FAIL" */
@@ -71,10 +80,19 @@ RfStatus rf_diff_images(const RfImage *a, const RfImage *b, const RfImage *da, c
                         const RfDiffOptions *opt, RfDiffResult *res, unsigned char *mask_out,
                         char *err, size_t errsz);
 
-/* The error heatmap: per pixel the error e on a log scale, 1e-6 (black) .. 1 (white) through
- * purple, red and yellow; 0 is black; silhouette pixels (mask != NULL) are drawn at half
- * brightness over grey. Display-ready RGB (write with RF_PNG_AS_IS). */
-RfStatus rf_diff_heatmap(const RfImage *a, const RfImage *b, const unsigned char *mask, RfImage *out);
+/* The error heat map, scaled to the verdict's thresholds (opt: warn, fail, edge_tolerant; NULL:
+ * the defaults), per pixel the error of rf_diff_pixel_error: 0 black; up to warn dark grey-blue,
+ * brighter on a log scale from 1e-6 to warn (so that rounding noise of a passing image stays
+ * quiet); warn..fail yellow, brighter toward fail; above fail red, dark just above fail and full
+ * at 100 x fail; NaN/Inf magenta. Silhouette pixels (mask != NULL) are greyed. The pixels are
+ * enlarged (nearest neighbour) by the integer factor that makes the map at least 384 wide (at
+ * most 8); when at most 64 pixels fail each gets a cyan ring, so that a single one is seen; a
+ * legend band below names the colours, the thresholds, the failing count and the worst pixel.
+ * Display-ready 8-bit RGB values (write with RF_PNG_AS_IS). */
+RfStatus rf_diff_heatmap(const RfImage *a, const RfImage *b, const unsigned char *mask, const RfDiffOptions *opt,
+                         RfImage *out);
+/* The heat map's colour for one error (three floats), without the enlargement and the legend. */
+void rf_diff_heat_colour(double e, const RfDiffOptions *opt, float *rgb);
 /* The depth comparison: |zA - zB| / zB on a log scale 1e-7 .. 0.1, magenta where only one image
  * hits something, black where neither does, grey for silhouettes. */
 RfStatus rf_diff_depth_heatmap(const RfImage *da, const RfImage *db, const unsigned char *mask,

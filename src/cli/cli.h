@@ -12,6 +12,7 @@ int rf_cmd_render(int argc, char **argv);
 int rf_cmd_merge(int argc, char **argv);
 int rf_cmd_trace(int argc, char **argv);
 int rf_cmd_diff(int argc, char **argv);
+int rf_cmd_grade(int argc, char **argv);
 int rf_cmd_bench(int argc, char **argv);
 int rf_cmd_export(int argc, char **argv);
 

@@ -2,6 +2,7 @@
  * silhouettes given depth images, writes heatmaps, and exits like OpenImageIO's idiff. */
 #include "cli.h"
 #include "args.h"
+#include "diff_args.h"
 #include "exit_codes.h"
 
 #include <math.h>
@@ -13,8 +14,7 @@
 #include "refray/transfer.h"
 
 enum {
-    OPT_HEATMAP = RF_OPT_ID, OPT_DEPTH_HEATMAP, OPT_DEPTH_A, OPT_DEPTH_B, OPT_WARN, OPT_WARNPERCENT, OPT_FAIL,
-    OPT_FAILPERCENT, OPT_FAIL_MEAN, OPT_HARDFAIL, OPT_DEPTH_EDGE, OPT_AS_IS, OPT_SPACE, OPT_KV, OPT_STAT, OPT_VAR_A,
+    OPT_HEATMAP = RF_OPT_ID, OPT_DEPTH_HEATMAP, OPT_DEPTH_A, OPT_DEPTH_B, OPT_DEPTH_EDGE, OPT_AS_IS, OPT_SPACE, OPT_KV, OPT_STAT, OPT_VAR_A,
     OPT_VAR_B, OPT_ALPHA, OPT_ACCEPT
 };
 
@@ -23,12 +23,6 @@ static const RfOpt diff_opts[] = {
     {"depth-a", OPT_DEPTH_A, "DA.exr", "A's depth image (refray render --depth-out): silhouettes are masked", NULL},
     {"depth-b", OPT_DEPTH_B, "DB.exr", "B's depth image (with --depth-a)", NULL},
     {"depth-heatmap", OPT_DEPTH_HEATMAP, "FILE", "the relative depth error as a heat map (.png or .exr)", NULL},
-    {"warn", OPT_WARN, "X", "a pixel differing by more than X counts for WARN (default 1e-4)", "a number >= 0"},
-    {"warnpercent", OPT_WARNPERCENT, "P", "WARN when more than P % of the pixels do (default 0.1)", "a number >= 0"},
-    {"fail", OPT_FAIL, "Y", "a pixel differing by more than Y counts for FAIL (default 1/255)", "a number >= 0"},
-    {"failpercent", OPT_FAILPERCENT, "P", "FAIL when more than P % of the pixels do (default 0.1)", "a number >= 0"},
-    {"fail-mean", OPT_FAIL_MEAN, "M", "FAIL when the mean difference exceeds M (default 1e-4)", "a number >= 0"},
-    {"hardfail", OPT_HARDFAIL, "H", "FAIL when any pixel differs by more than H (default off)", "a number >= 0"},
     {"depth-edge", OPT_DEPTH_EDGE, "E", "relative depth jump that makes a silhouette pixel", "a number >= 0"},
     {"as-is", OPT_AS_IS, NULL, "PNG values as stored (no decoding curve)", NULL},
     {"space", OPT_SPACE, "linear|display", "compare linear or display (encoded) values (default: display for a PNG)",
@@ -44,16 +38,18 @@ static const RfOpt diff_opts[] = {
     RF_OPT_TABLE_END,
 };
 
-static const RfOpt *const diff_tables[] = {diff_opts, rf_opts_png, NULL};
+static const RfOpt *const diff_tables[] = {diff_opts, rf_opts_diff, rf_opts_png, NULL};
 
 static const RfCommand diff_cmd = {
     "refray diff",
     "refray diff [options] A B\n"
     "       refray diff --stat --var-a VA.exr --var-b VB.exr [options] A B\n",
-    "A is the image under test, B the reference (EXR or PNG; PNG is decoded with --gamma G,\n"
-    "default 2.2, or --srgb). --space display compares the gamma/sRGB-encoded values, so\n"
-    "that one 8-bit code is 1/255 (the default when A or B is a PNG: grading a student's\n"
-    "PNG); linear compares linear values (the default for two EXRs).\n"
+    "A is the image under test, B the reference: EXR or HDR (linear), or PNG, PPM/PGM (P1-P6),\n"
+    "JPEG, TIFF, BMP, GIF, TGA (codes, decoded with --gamma G, default 2.2, or --srgb; a float\n"
+    "TIFF is linear). --space display compares the gamma/sRGB-encoded values, so that one\n"
+    "8-bit code is 1/255 (the default when A or B holds codes: grading a student's image);\n"
+    "linear compares linear values (the default for two EXRs). --edge-tolerant forgives\n"
+    "aliasing at silhouettes and half-pixel offsets (the best match in B's 3x3 neighbourhood).\n"
     "With depth images, pixels at depth discontinuities (silhouettes) of either are\n"
     "reported separately and the verdict uses the others.\n",
     diff_tables,
@@ -70,16 +66,6 @@ static const RfCommand diff_cmd = {
     "exit (idiff's): 0 pass, 1 warn, 2 fail, 3 size or channel mismatch, 4 file error,\n"
     "5 usage (README: Exit codes)\n",
 };
-
-static int is_png(const char *path)
-{
-    unsigned char sig[8];
-    FILE *f = fopen(path, "rb");
-    int png = f && fread(sig, 1, 8, f) == 8 && memcmp(sig, "\x89PNG\r\n\x1a\n", 8) == 0;
-    if (f)
-        fclose(f);
-    return png;
-}
 
 /* linear -> display values with the PNG curve, clamped to [0, 1] like a PNG writer would */
 static void encode_display(RfImage *img, RfPngOptions p)
@@ -196,7 +182,8 @@ int rf_cmd_diff(int argc, char **argv)
     RfDiffOptions o = rf_diff_options_default();
     RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
     int kv = 0, space = -1; /* -1 auto, 0 linear, 1 display */
-    int set_warn = 0, set_mean = 0, stat = 0;
+    int stat = 0;
+    unsigned set = 0; /* the thresholds given (diff_args.h) */
     const char *pva = NULL, *pvb = NULL;
     double alpha = 0.01, accept = 0.9975;
     RfOptParser p;
@@ -212,12 +199,6 @@ int rf_cmd_diff(int argc, char **argv)
         case OPT_DEPTH_HEATMAP: depth_heatmap = v; break;
         case OPT_DEPTH_A: pda = v; break;
         case OPT_DEPTH_B: pdb = v; break;
-        case OPT_WARN: ok = rf_arg_nonneg(v, &o.warn), set_warn = 1; break;
-        case OPT_WARNPERCENT: ok = rf_arg_nonneg(v, &o.warn_percent); break;
-        case OPT_FAIL: ok = rf_arg_nonneg(v, &o.fail); break;
-        case OPT_FAILPERCENT: ok = rf_arg_nonneg(v, &o.fail_percent); break;
-        case OPT_FAIL_MEAN: ok = rf_arg_nonneg(v, &o.fail_mean), set_mean = 1; break;
-        case OPT_HARDFAIL: ok = rf_arg_nonneg(v, &o.hardfail); break;
         case OPT_DEPTH_EDGE: ok = rf_arg_nonneg(v, &o.depth_edge); break;
         case OPT_AS_IS: popt.encoding = RF_PNG_AS_IS; break;
         case OPT_SPACE:
@@ -230,7 +211,10 @@ int rf_cmd_diff(int argc, char **argv)
         case OPT_VAR_B: pvb = v; break;
         case OPT_ALPHA: ok = rf_arg_nonneg(v, &alpha) && alpha > 0.0 && alpha < 1.0; break;
         case OPT_ACCEPT: ok = rf_arg_nonneg(v, &accept) && accept <= 1.0; break;
-        default: ok = rf_arg_shared(key, v, NULL, &popt) > 0;
+        default: {
+            int r = rf_arg_diff(key, v, &o, &set);
+            ok = r != 0 ? r > 0 : rf_arg_shared(key, v, NULL, &popt) > 0;
+        }
         }
         if (!ok)
             return rf_opt_bad_value(&p);
@@ -259,28 +243,23 @@ int rf_cmd_diff(int argc, char **argv)
         if (bad)
             return bad;
     }
-    if (space < 0)
-        space = is_png(pa) || is_png(pb);
-    if (space == 1) {
-        /* display values of an 8-bit PNG are rounded by up to half a code: a correct PNG has mean
-         * error up to 0.5/255, so the mean may reach one code; anything beyond rounding warns */
-        if (!set_mean)
-            o.fail_mean = 1.0 / 255.0;
-        if (!set_warn)
-            o.warn = 0.5 / 255.0 + 1e-6;
-    }
     char err[1024];
     RfImage ia, ib, da, db, heat;
     memset(&heat, 0, sizeof heat), memset(&ia, 0, sizeof ia), memset(&ib, 0, sizeof ib), memset(&da, 0, sizeof da), memset(&db, 0, sizeof db);
     int rc = 0;
-    if (rf_image_read(pa, popt, &ia, err, sizeof err) != RF_OK || rf_image_read(pb, popt, &ib, err, sizeof err) != RF_OK ||
+    RfImageSource sa, sb;
+    if (rf_image_read_source(pa, popt, &ia, &sa, err, sizeof err) != RF_OK ||
+        rf_image_read_source(pb, popt, &ib, &sb, err, sizeof err) != RF_OK ||
         (pda && (rf_image_read(pda, popt, &da, err, sizeof err) != RF_OK ||
                  rf_image_read(pdb, popt, &db, err, sizeof err) != RF_OK))) {
         fprintf(stderr, "refray diff: %s\n", err);
         rc = RF_EXIT_FILE;
         goto done;
     }
+    if (space < 0) /* a PNG, PPM, JPEG, ... (integer codes) on either side: a student's image */
+        space = sa.encoded || sb.encoded;
     if (space == 1) {
+        rf_arg_diff_display(&o, set);
         encode_display(&ia, popt);
         encode_display(&ib, popt);
     }
@@ -319,7 +298,7 @@ int rf_cmd_diff(int argc, char **argv)
     printf(kv ? "verdict=%s\n" : "verdict: %s\n", rf_diff_verdict_name(res.verdict));
     rc = (int)res.verdict;
     if (heatmap) {
-        if (rf_diff_heatmap(&ia, &ib, res.has_depth ? mask : NULL, &heat) != RF_OK || !write_heatmap(heatmap, &heat, err, sizeof err)) {
+        if (rf_diff_heatmap(&ia, &ib, res.has_depth ? mask : NULL, &o, &heat) != RF_OK || !write_heatmap(heatmap, &heat, err, sizeof err)) {
             fprintf(stderr, "refray diff: %s\n", heat.data ? err : "cannot make the heatmap");
             rc = RF_EXIT_FILE;
         }

@@ -88,17 +88,38 @@ static int run_batch(const char *path, const RfFormulaBatchOptions *opt_in)
     return exit_code(sum.worst);
 }
 
-/* `refray formula ID --help` (before the parser, which would print the command's help) */
-static const RfFormula *id_help(int argc, char **argv)
+/* "unknown id 'crosss'; did you mean 'cross'?" */
+static int unknown_id(const char *word)
+{
+    const char *ids[256];
+    int count = 0;
+    for (size_t i = 0; i < rf_formula_count() && count < 256; i++)
+        ids[count++] = rf_formula_at(i)->id;
+    int s = rf_suggest(word, ids, count);
+    fprintf(stderr, "refray formula: unknown id '%s'", word);
+    if (s >= 0)
+        fprintf(stderr, "; did you mean '%s'?", ids[s]);
+    fprintf(stderr, " (see: refray formula list)\n");
+    return RF_EXIT_USAGE;
+}
+
+/* `refray formula ID --help` (before the parser, which would print the command's help):
+ * *word is the first operand-like argument when --help is given, else NULL. */
+static const RfFormula *id_help(int argc, char **argv, const char **word)
 {
     const RfFormula *f = NULL;
     int help = 0;
+    *word = NULL;
     for (int i = 1; i < argc && strcmp(argv[i], "--") != 0; i++) {
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0)
             help = 1;
-        else if (!f && argv[i][0] != '-')
+        else if (argv[i][0] != '-' && !strchr(argv[i], '=') && !*word)
+            *word = argv[i];
+        if (!f && argv[i][0] != '-')
             f = rf_formula_find(argv[i]);
     }
+    if (!help)
+        *word = NULL;
     return help ? f : NULL;
 }
 
@@ -108,11 +129,14 @@ int rf_cmd_formula(int argc, char **argv)
     RfFormulaBatchOptions opt = {RF_FORMULA_JSON, -1, 0, RF_FORMULA_RTOL, RF_FORMULA_ATOL, NULL, NULL};
     const char *batch = NULL;
     int reference = 0, tol_given = 0;
-    const RfFormula *help = id_help(argc, argv);
+    const char *word;
+    const RfFormula *help = id_help(argc, argv, &word);
     if (help) {
         rf_formula_help(help, stdout);
         return RF_EXIT_OK;
     }
+    if (word && strcmp(word, "list") != 0 && argv[1] == word) /* `refray formula nope --help` */
+        return unknown_id(word);
     RfOptParser p;
     int key;
     rf_opt_init(&p, &formula_cmd, argc, argv);
@@ -186,18 +210,8 @@ int rf_cmd_formula(int argc, char **argv)
         return RF_EXIT_OK;
     }
     const RfFormula *f = rf_formula_find(ops[0]);
-    if (!f) {
-        const char *ids[256];
-        int count = 0;
-        for (size_t i = 0; i < rf_formula_count() && count < 256; i++)
-            ids[count++] = rf_formula_at(i)->id;
-        int s = rf_suggest(ops[0], ids, count);
-        fprintf(stderr, "refray formula: unknown id '%s'", ops[0]);
-        if (s >= 0)
-            fprintf(stderr, "; did you mean '%s'?", ids[s]);
-        fprintf(stderr, " (see: refray formula list)\n");
-        return RF_EXIT_USAGE;
-    }
+    if (!f)
+        return unknown_id(ops[0]);
     char err[512];
     char *in = rf_formula_args_to_json(n - 1, ops + 1, err, sizeof err);
     if (!in) {

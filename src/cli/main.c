@@ -22,6 +22,7 @@ static const Command commands[] = {
     {"chromaticity", rf_cmd_chromaticity, "draw the CIE 1931 xy chromaticity diagram (PNG/SVG, §1.5)"},
     {"metamers", rf_cmd_metamers, "two different spectra with the same XYZ and LMS (§1.3.1)"},
     {"diff", rf_cmd_diff, "compare two images (EXR/PNG): errors, silhouettes, heatmap; exits like idiff"},
+    {"grade", rf_cmd_grade, "grade a class of student images (PPM/PNG/JPEG/TIFF/BMP/HDR/EXR) against one reference"},
     {"bench", rf_cmd_bench, "run time against error: samplers x sample counts, time to relMSE 1e-3"},
     {"info", rf_cmd_info, "load a scene (.nff, .rf, .obj): counts, materials, lights, features used"},
     {"export", rf_cmd_export, "write a scene for Mitsuba 3, pbrt-v4 or POV-Ray, conversions documented (make crosscheck)"},

@@ -1,4 +1,5 @@
-/* Image comparison (diff.h): metrics, silhouette mask, verdict, heatmaps. */
+/* Image comparison (diff.h): metrics, silhouette mask, verdict, the statistical test (the heat
+ * maps are heatmap.c). */
 #include "refray/diff.h"
 
 #include <math.h>
@@ -16,6 +17,7 @@ RfDiffOptions rf_diff_options_default(void)
     o.fail_mean = 1e-4;
     o.hardfail = INFINITY;
     o.depth_edge = 0.01;
+    o.edge_tolerant = 0;
     return o;
 }
 
@@ -51,6 +53,37 @@ void rf_diff_silhouettes(const RfImage *d, double edge, unsigned char *mask)
                 if (fabs(a - 2.0 * b + c) > edge * top || isnan(z0) || isnan(z1) || isnan(z2))
                     mask[i0] = mask[i1] = mask[i2] = 1;
             }
+}
+
+/* The largest channel error of two pixels, INFINITY when a value is not finite. */
+static double pixel_error(const float *pa, const float *pb, int nc)
+{
+    double e = 0.0;
+    for (int c = 0; c < nc; c++) {
+        double a = pa[c], b = pb[c];
+        if (!isfinite(a) || !isfinite(b))
+            return INFINITY;
+        e = fmax(e, fabs(a - b));
+    }
+    return e;
+}
+
+double rf_diff_pixel_error(const RfImage *a, const RfImage *b, int x, int y, int edge_tolerant, int *bx, int *by)
+{
+    int nc = a->channels == 1 || b->channels == 1 ? 1 : 3, r = edge_tolerant ? 1 : 0, best_x = x, best_y = y;
+    const float *pa = a->data + ((size_t)y * (size_t)a->width + (size_t)x) * (size_t)a->channels;
+    double best = pixel_error(pa, b->data + ((size_t)y * (size_t)b->width + (size_t)x) * (size_t)b->channels, nc);
+    for (int j = y - r; j <= y + r; j++)
+        for (int i = x - r; i <= x + r; i++) {
+            if (i < 0 || j < 0 || i >= b->width || j >= b->height)
+                continue;
+            double e = pixel_error(pa, b->data + ((size_t)j * (size_t)b->width + (size_t)i) * (size_t)b->channels, nc);
+            if (e < best)
+                best = e, best_x = i, best_y = j;
+        }
+    if (bx)
+        *bx = best_x, *by = best_y;
+    return best;
 }
 
 typedef struct {
@@ -162,7 +195,11 @@ RfStatus rf_diff_images(const RfImage *a, const RfImage *b, const RfImage *da, c
     for (int y = 0; y < a->height; y++)
         for (int x = 0; x < a->width; x++) {
             size_t i = (size_t)y * a->width + x;
-            const float *pa = a->data + i * a->channels, *pb = b->data + i * b->channels;
+            int bx = x, by = y; /* edge-tolerant: A's pixel against its best match among B's neighbours */
+            if (o->edge_tolerant)
+                rf_diff_pixel_error(a, b, x, y, 1, &bx, &by);
+            const float *pa = a->data + i * a->channels,
+                        *pb = b->data + ((size_t)by * b->width + (size_t)bx) * b->channels;
             add_pixel(&res->all, &all, o, pa, pb, nc, x, y);
             if (mask[i]) {
                 res->silhouette++;
@@ -188,79 +225,6 @@ RfStatus rf_diff_images(const RfImage *a, const RfImage *b, const RfImage *da, c
     if (mask_out)
         memcpy(mask_out, mask, n);
     free(mask);
-    return RF_OK;
-}
-
-/* black -> purple -> red -> yellow -> white for t in [0, 1] */
-static void heat(double t, float *rgb)
-{
-    static const float stops[5][3] = {{0, 0, 0}, {0.45f, 0.05f, 0.55f}, {0.9f, 0.15f, 0.1f},
-                                      {1.0f, 0.85f, 0.1f}, {1, 1, 1}};
-    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
-    double s = t * 4.0;
-    int k = s >= 4.0 ? 3 : (int)s;
-    double f = s - k;
-    for (int c = 0; c < 3; c++)
-        rgb[c] = (float)((1.0 - f) * stops[k][c] + f * stops[k + 1][c]);
-}
-
-static void log_heat(double e, double lo, double hi, float *rgb)
-{
-    if (e <= 0.0) {
-        rgb[0] = rgb[1] = rgb[2] = 0.0f;
-        return;
-    }
-    heat(isfinite(e) ? (log10(e) - log10(lo)) / (log10(hi) - log10(lo)) : 1.0, rgb);
-    if (e < lo) /* faintly visible, so that tiny differences are not mistaken for none */
-        rgb[0] = rgb[2] = 0.08f, rgb[1] = 0.0f;
-}
-
-static void grey_out(float *rgb)
-{
-    for (int c = 0; c < 3; c++)
-        rgb[c] = 0.5f * rgb[c] + 0.25f;
-}
-
-RfStatus rf_diff_heatmap(const RfImage *a, const RfImage *b, const unsigned char *mask, RfImage *out)
-{
-    if (a->width != b->width || a->height != b->height)
-        return RF_ERR_DOMAIN;
-    RfStatus st = rf_image_alloc(out, a->width, a->height, 3);
-    if (st != RF_OK)
-        return st;
-    int nc = a->channels == 1 || b->channels == 1 ? 1 : 3;
-    for (size_t i = 0; i < (size_t)a->width * a->height; i++) {
-        double e = 0.0;
-        for (int c = 0; c < nc; c++) {
-            double d = fabs((double)a->data[i * a->channels + c] - (double)b->data[i * b->channels + c]);
-            e = isnan(d) ? INFINITY : fmax(e, d);
-        }
-        log_heat(e, 1e-6, 1.0, out->data + 3 * i);
-        if (mask && mask[i])
-            grey_out(out->data + 3 * i);
-    }
-    return RF_OK;
-}
-
-RfStatus rf_diff_depth_heatmap(const RfImage *da, const RfImage *db, const unsigned char *mask, RfImage *out)
-{
-    if (da->width != db->width || da->height != db->height)
-        return RF_ERR_DOMAIN;
-    RfStatus st = rf_image_alloc(out, da->width, da->height, 3);
-    if (st != RF_OK)
-        return st;
-    for (size_t i = 0; i < (size_t)da->width * da->height; i++) {
-        float za = da->data[i * da->channels], zb = db->data[i * db->channels], *px = out->data + 3 * i;
-        if (isfinite(za) != isfinite(zb)) {
-            px[0] = 1.0f, px[1] = 0.0f, px[2] = 1.0f;
-        } else if (!isfinite(za)) {
-            px[0] = px[1] = px[2] = 0.0f;
-        } else {
-            log_heat(zb > 0.0f ? fabs((double)za - (double)zb) / (double)zb : INFINITY, 1e-7, 0.1, px);
-            if (mask && mask[i])
-                grey_out(px);
-        }
-    }
     return RF_OK;
 }
 

@@ -46,4 +46,19 @@ void rf_atomic_abort(RfAtomicFile *f);
  * which renames it at rf_write_batch_commit. Always releases f. */
 RfStatus rf_atomic_finish(RfAtomicFile *f, RfWriteBatch *batch, char *err, size_t err_size);
 
+/* The PNG options' curve, shared by every reader of integer codes (PNG, PNM, JPEG, BMP, TIFF):
+ * rf_io_check_decode refuses an unknown encoding or a bad gamma, rf_io_decode_value maps a code
+ * in [0, 1] to a linear value, rf_io_encode_value a linear value to a code's (unclamped; png.c). */
+RfStatus rf_io_check_decode(RfPngOptions opt, const char *path, char *err, size_t err_size);
+double rf_io_decode_value(double v, RfPngOptions opt);
+double rf_io_encode_value(double v, RfPngOptions opt);
+
+/* The readers of the formats students write besides EXR and PNG (foreign.c), through Debian's
+ * libraries: netpbm (PBM/PGM/PPM, plain and raw), stb_image (JPEG, BMP, TGA, GIF, Radiance HDR),
+ * libtiff. *encoded (may be NULL) is set to 1 for integer codes decoded with the curve, 0 for
+ * linear floats (HDR, float TIFF). */
+RfStatus rf_pnm_read(const char *path, RfPngOptions decode, RfImage *img, int *encoded, char *err, size_t err_size);
+RfStatus rf_stb_read(const char *path, RfPngOptions decode, RfImage *img, int *encoded, char *err, size_t err_size);
+RfStatus rf_tiff_read(const char *path, RfPngOptions decode, RfImage *img, int *encoded, char *err, size_t err_size);
+
 #endif

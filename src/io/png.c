@@ -32,7 +32,7 @@ static void png_on_warning(png_structp png, png_const_charp msg)
     (void)msg;
 }
 
-static RfStatus check_options(RfPngOptions opt, const char *path, char *err, size_t err_size)
+RfStatus rf_io_check_decode(RfPngOptions opt, const char *path, char *err, size_t err_size)
 {
     if (opt.encoding != RF_PNG_AS_IS && opt.encoding != RF_PNG_GAMMA && opt.encoding != RF_PNG_SRGB)
         return rf_io_fail(RF_ERR_DOMAIN, err, err_size, path, "unknown PNG encoding %d", (int)opt.encoding);
@@ -41,7 +41,7 @@ static RfStatus check_options(RfPngOptions opt, const char *path, char *err, siz
     return RF_OK;
 }
 
-static double encode_value(double v, RfPngOptions opt)
+double rf_io_encode_value(double v, RfPngOptions opt)
 {
     switch (opt.encoding) {
     case RF_PNG_GAMMA: return rf_gamma_encode(v, opt.gamma);
@@ -50,7 +50,7 @@ static double encode_value(double v, RfPngOptions opt)
     }
 }
 
-static double decode_value(double v, RfPngOptions opt)
+double rf_io_decode_value(double v, RfPngOptions opt)
 {
     switch (opt.encoding) {
     case RF_PNG_GAMMA: return rf_gamma_decode(v, opt.gamma);
@@ -66,7 +66,7 @@ static void encode_row(const RfImage *img, int y, RfPngOptions opt, unsigned cha
     size_t i, n = (size_t)img->width * (size_t)img->channels;
     for (i = 0; i < n; i++) {
         int alpha = img->channels == 4 && i % 4 == 3; /* PNG alpha is linear: no curve */
-        double v = alpha ? src[i] : encode_value(src[i], opt);
+        double v = alpha ? src[i] : rf_io_encode_value(src[i], opt);
         long q = rf_quantize(v, opt.bits); /* clamps to [0,1] and rounds */
         if (opt.bits == 16) {
             row[2 * i] = (unsigned char)(q >> 8);
@@ -88,7 +88,7 @@ static RfStatus png_write_impl(const char *path, const RfImage *img, RfPngOption
 
     st = rf_io_check_image(img, path, err, err_size);
     if (st == RF_OK)
-        st = check_options(opt, path, err, err_size);
+        st = rf_io_check_decode(opt, path, err, err_size);
     if (st != RF_OK)
         return st;
     if (opt.bits != 8 && opt.bits != 16)
@@ -168,7 +168,7 @@ static RfStatus png_read_impl(const char *path, RfPngOptions decode, RfImage *im
     RfStatus started = rf_io_read_start(img, path, err, err_size);
     if (started != RF_OK)
         return started;
-    st = check_options(decode, path, err, err_size);
+    st = rf_io_check_decode(decode, path, err, err_size);
     if (st != RF_OK)
         return st;
     fp = fopen(path, "rb");
@@ -246,7 +246,7 @@ static RfStatus png_read_impl(const char *path, RfPngOptions decode, RfImage *im
     n = (size_t)w * (size_t)h * (size_t)nc;
     for (i = 0; i < n; i++) {
         double v = depth == 16 ? (pixels[2 * i] << 8 | pixels[2 * i + 1]) / 65535.0 : pixels[i] / 255.0;
-        img->data[i] = (float)(nc == 4 && i % 4 == 3 ? v : decode_value(v, decode));
+        img->data[i] = (float)(nc == 4 && i % 4 == 3 ? v : rf_io_decode_value(v, decode));
     }
     free(rows);
     free(pixels);
