@@ -227,6 +227,8 @@ static void t_export_refusals(void)
         {RF_EXPORT_MITSUBA, "material g  kt 1  ior 1.5\nsphere 0 0 0 1\n", "t.rf:3:1: material 'g': kt without `fresnel`"},
         {RF_EXPORT_MITSUBA, "light spot 0 5 0  axis 0 -1 0  cutoff 20  exponent 4\nmaterial w kd 1\nsphere 0 0 0 1\n",
          "t.rf:3:1: spot light with exponent 4"},
+        {RF_EXPORT_MITSUBA, "light rect 0 2 0  1 0 0  0 0 1  radiance 2\nmaterial w kd 1\nsphere 0 0 0 1\n",
+         "t.rf:3:1: rect area light: Mitsuba's area emitter is a shape"},
         {RF_EXPORT_POV, "ambient 0.1\nmaterial w kd 1  ka 1\nsphere 0 0 0 1\n", "t.rf:4:1: material 'w': ambient term"},
         {RF_EXPORT_POV, "material g  kr 0.5  kt 1  ior 1.5  fresnel\nsphere 0 0 0 1\n",
          "t.rf:3:1: material 'g': Fresnel glass with kr"},

@@ -17,6 +17,8 @@ POV-Ray is deterministic like refray: both at one sample per pixel centre (POV-R
 with `refray diff`: POV-Ray writes half floats (relative rounding 2^-11), so PASS when
 max |difference| <= 1e-3 max(1, |value|) ... taken as max_abs <= 1e-3 and mean_abs <= 1.5e-4.
 
+A scene that `refray export` refuses for a renderer (exit 2: something it cannot represent) is
+not compared with that renderer, and the page says why.
 Writes OUT/index.html (the images, heat maps, numbers and verdicts) and OUT/results.json; the
 exit code is 1 when a comparison that ran failed. A renderer that is not installed is skipped and
 said so (Mitsuba: `pip install mitsuba==3.5.2 numpy`, or run with --install, which installs it
@@ -169,7 +171,9 @@ def main():
         r["refray_seconds"] = round(time.time() - t0, 2)
         if use_mi:
             p = run([a.refray, "export", "--quiet", "--mitsuba", o(".mitsuba.xml"), scene, "--samples", "1"])
-            if p.returncode != 0:
+            if p.returncode == 2:  # refused: the scene holds what Mitsuba cannot represent
+                r["mitsuba"] = {"skipped": p.stderr.strip()}
+            elif p.returncode != 0:
                 r["mitsuba"] = {"error": "refray export --mitsuba: " + p.stderr.strip()}
                 failed += 1
             else:
@@ -193,7 +197,9 @@ def main():
                     ", ".join("%.2f" % x for x in z), r["mitsuba"]["verdict"]))
         if use_pov:
             p = run([a.refray, "export", "--quiet", "--pov", o(".pov"), scene])
-            if p.returncode != 0:
+            if p.returncode == 2:
+                r["povray"] = {"skipped": p.stderr.strip()}
+            elif p.returncode != 0:
                 r["povray"] = {"error": "refray export --pov: " + p.stderr.strip()}
                 failed += 1
             else:
@@ -237,11 +243,15 @@ def write_html(a, results, use_mi, use_pov):
                 return "<td>skipped</td>"
             if "error" in x:
                 return "<td class=fail>ERROR</td>"
+            if "skipped" in x:
+                return "<td>not exportable</td>"
             return "<td class=%s>%s</td>" % (x["verdict"].lower(), x["verdict"])
         rows.append("<tr><td><a href='#%s'>%s</a></td>%s%s</tr>" % (n, e(n), cell(mi_r), cell(pv)))
         imgs = ["<figure><img src='%s.refray.png'><figcaption>refray (%d spp)</figcaption></figure>" % (n, a.samples)]
         notes = []
-        if mi_r and "error" not in mi_r:
+        if mi_r and "skipped" in mi_r:
+            notes.append("<b>Mitsuba 3</b>: the scene cannot be exported: <pre>%s</pre>" % e(mi_r["skipped"]))
+        elif mi_r and "error" not in mi_r:
             st = mi_r["stat"]
             imgs.append("<figure><img src='%s.mitsuba.png'><figcaption>Mitsuba 3 (%d spp)</figcaption></figure>" % (n, a.samples))
             imgs.append("<figure><img src='%s.mitsuba-p.png'><figcaption>z-test: -log10 p</figcaption></figure>" % n)
@@ -255,7 +265,9 @@ def write_html(a, results, use_mi, use_pov):
                              mi_r["mean_abs"], mi_r["max_abs"], mi_r["seconds"]))
         elif mi_r:
             notes.append("<b>Mitsuba 3</b> ERROR: <pre>%s</pre>" % e(mi_r["error"]))
-        if pv and "error" not in pv:
+        if pv and "skipped" in pv:
+            notes.append("<b>POV-Ray</b>: the scene cannot be exported: <pre>%s</pre>" % e(pv["skipped"]))
+        elif pv and "error" not in pv:
             imgs.append("<figure><img src='%s.povray.png'><figcaption>POV-Ray 3.7 (1 spp)</figcaption></figure>" % n)
             imgs.append("<figure><img src='%s.povray-heat.png'><figcaption>|POV-Ray - refray|</figcaption></figure>" % n)
             notes.append("<b>POV-Ray 3.7</b> %s: max |difference| %.3g (bound %g), mean %.3g (bound %g) against "

@@ -93,6 +93,9 @@ static void write_light(RfExCtx *c, const RfLight *l)
                       rf__ex_num(c, l->spot_cutoff), rf__ex_num(c, l->spot_cutoff));
         return;
     case RF_LIGHT_RECT: case RF_LIGHT_DISC: case RF_LIGHT_SPHERE: {
+        rf__ex_note(c, l->loc, 1, "%s area light: Mitsuba's area emitter is a shape, seen by camera and mirror "
+                    "rays (its path integrator 3.5.2 ignores hide_emitters) and blocking shadow rays; refray's is seen "
+                    "by none (written as an emitting shape: compare away from it)", rf_light_kind_name(l->kind));
         if (l->two_sided)
             rf__ex_note(c, l->loc, 1, "two-sided %s light: Mitsuba's area emitters emit from the front only",
                         rf_light_kind_name(l->kind));
@@ -291,9 +294,6 @@ void rf__export_mitsuba(RfExCtx *c)
     rf__ex_printf(c, "-->\n<scene version=\"3.0.0\">\n");
     rf__ex_printf(c, "  <integrator type=\"path\"><integer name=\"max_depth\" value=\"%d\"/>%s</integrator>\n",
                   c->depth + 1, area ? " <boolean name=\"hide_emitters\" value=\"true\"/>" : "");
-    if (area)
-        rf__ex_note(c, s->lights[0].loc, 0, "area lights: refray's are invisible to every ray; Mitsuba's are "
-                    "shapes that block shadow rays and show in mirrors (hide_emitters hides them from the camera)");
     double fov = 2.0 * atan(0.5 * (w.t - w.b) / w.d) * 180.0 / 3.14159265358979323846;
     int lens = s->camera.aperture > 0.0;
     rf__ex_printf(c, "  <sensor type=\"%s\">\n    <string name=\"fov_axis\" value=\"y\"/> <float name=\"fov\" value=\"%s\"/>\n",
