@@ -266,6 +266,7 @@ static inline void rf_fuzz_image(const RfImage *img, const char *dir)
             (void)rf_diff_percent(res.all.above_fail, &res.all);
             if (rf_diff_heatmap(img, &b, mask, &o, &heat) == RF_OK)
                 rf_image_free(&heat);
+            rf_diff_heatmap_done(); /* the legend's font caches: no leak per input */
         }
         rf_image_free(&b);
     }

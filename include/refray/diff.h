@@ -91,6 +91,9 @@ RfStatus rf_diff_images(const RfImage *a, const RfImage *b, const RfImage *da, c
  * Display-ready 8-bit RGB values (write with RF_PNG_AS_IS). */
 RfStatus rf_diff_heatmap(const RfImage *a, const RfImage *b, const unsigned char *mask, const RfDiffOptions *opt,
                          RfImage *out);
+/* Frees the font caches that the legends' text left in cairo and fontconfig (they would be seen
+ * as leaks at exit); call it once when no more heat maps are drawn, never while one is. */
+void rf_diff_heatmap_done(void);
 /* The heat map's colour for one error (three floats), without the enlargement and the legend. */
 void rf_diff_heat_colour(double e, const RfDiffOptions *opt, float *rgb);
 /* The depth comparison: |zA - zB| / zB on a log scale 1e-7 .. 0.1, magenta where only one image

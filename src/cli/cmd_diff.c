@@ -303,6 +303,7 @@ int rf_cmd_diff(int argc, char **argv)
             rc = RF_EXIT_FILE;
         }
         rf_image_free(&heat);
+        rf_diff_heatmap_done();
     }
     if (depth_heatmap && rc != RF_EXIT_FILE) {
         if (rf_diff_depth_heatmap(&da, &db, mask, &heat) != RF_OK || !write_heatmap(depth_heatmap, &heat, err, sizeof err)) {

@@ -418,5 +418,6 @@ int rf_cmd_grade(int argc, char **argv)
         free(l.v[i].student), free(l.v[i].path);
     free(l.v);
     rf_image_free(&ref);
+    rf_diff_heatmap_done();
     return rc;
 }

@@ -29,7 +29,8 @@ double rf_srgb_decode(double v)
 
 long rf_quantize(double v, int bits)
 {
-    double max = ldexp(1.0, bits) - 1.0;
+    /* 2^bits - 1 (exact either way; the shift is the fast path of every PNG row) */
+    double max = bits >= 1 && bits <= 16 ? (double)((1L << bits) - 1) : ldexp(1.0, bits) - 1.0;
     if (!(v > 0.0)) /* also NaN */
         return 0;
     if (v >= 1.0)

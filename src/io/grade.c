@@ -31,18 +31,36 @@ static double clamp01(double v)
     return isfinite(v) ? (v < 0.0 ? 0.0 : v > 1.0 ? 1.0 : v) : v; /* NaN/Inf stay, so that they fail */
 }
 
-RfStatus rf_grade_display(const RfImage *stored, int encoded, RfPngOptions enc, RfImage *out)
+/* out = three channels of src (grey copied to RGB, alpha dropped) mapped by f and clamped. */
+typedef double (*Map)(double v, const void *ctx);
+static RfStatus map_rgb(const RfImage *src, Map f, const void *ctx, RfImage *out)
 {
-    RfStatus st = rf_image_alloc(out, stored->width, stored->height, 3);
+    RfStatus st = rf_image_alloc(out, src->width, src->height, 3);
     if (st != RF_OK)
         return st;
-    size_t n = (size_t)stored->width * (size_t)stored->height;
+    size_t n = (size_t)src->width * (size_t)src->height;
     for (size_t i = 0; i < n; i++)
         for (int c = 0; c < 3; c++) {
-            double v = stored->data[i * (size_t)stored->channels + (size_t)(stored->channels == 1 ? 0 : c)];
-            out->data[3 * i + (size_t)c] = (float)clamp01(encoded ? v : rf_io_encode_value(v, enc));
+            double v = src->data[i * (size_t)src->channels + (size_t)(src->channels == 1 ? 0 : c)];
+            out->data[3 * i + (size_t)c] = (float)clamp01(f(v, ctx));
         }
     return RF_OK;
+}
+
+static double as_stored(double v, const void *ctx)
+{
+    (void)ctx;
+    return v;
+}
+
+static double encoded_with(double v, const void *ctx)
+{
+    return rf_io_encode_value(v, *(const RfPngOptions *)ctx);
+}
+
+RfStatus rf_grade_display(const RfImage *stored, int encoded, RfPngOptions enc, RfImage *out)
+{
+    return map_rgb(stored, encoded ? as_stored : encoded_with, &enc, out);
 }
 
 /* Appends printf text to the reason, "; " between parts. */
@@ -104,21 +122,24 @@ typedef struct {
 } Cause;
 
 /* The reference as the student would have written it with the cause's curve, in display values. */
+typedef struct {
+    const Cause *cause;
+    int encoded;
+    RfPngOptions enc;
+} Prediction;
+
+static double predicted(double v, const void *ctx)
+{
+    const Prediction *p = ctx;
+    v = p->cause->twice ? rf_io_encode_value(rf_io_encode_value(v, p->enc), p->enc)
+                        : rf_io_encode_value(v, p->cause->curve);
+    return p->encoded ? v : rf_io_encode_value(v, p->enc); /* a linear file: shown with the expected curve */
+}
+
 static RfStatus predict(const RfImage *ref, const Cause *c, int encoded, RfPngOptions enc, RfImage *out)
 {
-    RfStatus st = rf_image_alloc(out, ref->width, ref->height, 3);
-    if (st != RF_OK)
-        return st;
-    size_t n = (size_t)ref->width * (size_t)ref->height;
-    for (size_t i = 0; i < n; i++)
-        for (int k = 0; k < 3; k++) {
-            double v = ref->data[i * (size_t)ref->channels + (size_t)(ref->channels == 1 ? 0 : k)];
-            v = c->twice ? rf_io_encode_value(rf_io_encode_value(v, enc), enc) : rf_io_encode_value(v, c->curve);
-            if (!encoded) /* a linear file: what is stored, then shown with the expected curve */
-                v = rf_io_encode_value(v, enc);
-            out->data[3 * i + (size_t)k] = (float)clamp01(v);
-        }
-    return RF_OK;
+    Prediction p = {c, encoded, enc};
+    return map_rgb(ref, predicted, &p, out);
 }
 
 static void curve_name(RfPngOptions p, char *buf, size_t n)

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include <cairo.h>
+#include <fontconfig/fontconfig.h>
 
 /* black -> purple -> red -> yellow -> white for t in [0, 1] */
 static void heat(double t, float *rgb)
@@ -226,4 +227,10 @@ RfStatus rf_diff_depth_heatmap(const RfImage *da, const RfImage *db, const unsig
         }
     }
     return RF_OK;
+}
+
+void rf_diff_heatmap_done(void)
+{
+    cairo_debug_reset_static_data();
+    FcFini();
 }
