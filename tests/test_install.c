@@ -384,8 +384,8 @@ static void t_render_deps_file(void)
 
 /* examples/course/: a course repository using refray.mk. make builds every reference; with
  * nothing touched nothing is rebuilt; touching the pyramid's mesh or its material library
- * rebuilds the pyramid's images only; make grade passes the references themselves and fails a
- * missing image. */
+ * rebuilds the pyramid's images only; make grade (refray grade) passes the references themselves
+ * and fails a missing image. */
 static void t_course_makefile(void)
 {
     char dir[PATH_MAX], cwd[PATH_MAX], bin[PATH_MAX], mk[1 << 14];
@@ -418,11 +418,19 @@ static void t_course_makefile(void)
         if ((out = run_ok(cmd, __LINE__)))
             RF_CHECK_STR(out, "1\n1\nok\n");
     }
+    /* make grade: refray grade per reference, "NAME VERDICT SCORE ..." lines, a report each */
     snprintf(cmd, sizeof cmd,
-             "cd '%s/course' && mkdir -p student && cp scenes/*.png student/ && %s grade STUDENT=student 2>/dev/null; echo $?;"
-             " rm student/cube.png && %s grade STUDENT=student 2>/dev/null; echo $?", dir, mk, mk);
+             "cd '%s/course' && mkdir -p student && cp scenes/*.png student/ && g=$(%s grade STUDENT=student 2>/dev/null);"
+             " st=$?; printf '%%s\\n' \"$g\" | awk '{print $1, $2}'; echo $st; ls grade-report/*/grades.csv | wc -l;"
+             " rm student/cube.png && %s grade STUDENT=student 2>/dev/null; echo $?",
+             dir, mk, mk);
     out = rf_test_run(cmd, &code);
-    RF_CHECK_STR(out, "pyramid: PASS\nspheres: PASS\ncube: PASS\n0\npyramid: PASS\nspheres: PASS\ncube: missing\n2\n");
+    if (strncmp(out, "pyramid pass\nspheres pass\ncube pass\n0\n3\n", 40) != 0)
+        rf_test_fail(__FILE__, __LINE__, "make grade printed:\n%s", out);
+    rf_test_checks++;
+    const char *second = strstr(out, "\n3\n"); /* the run without cube.png */
+    RF_CHECK(second && strstr(second, "\ncube ") && strstr(second, "unreadable"));
+    RF_CHECK(strlen(out) > 2 && strcmp(out + strlen(out) - 2, "2\n") == 0);
     rm_tree(dir);
 }
 

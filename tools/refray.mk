@@ -26,21 +26,23 @@ refray_render = $(REFRAY) render $< -o $*.exr --png $*.png --deps $*.exr.d --qui
 %.exr %.png: %.obj
 	$(refray_render)
 
-# Grading: `make grade STUDENT=dir` compares each student image dir/NAME.png (or .exr) with the
-# reference NAME.exr of REFRAY_REFS and prints refray diff's verdict per image; the exit status
-# is non-zero when one fails. REFRAY_GRADE_FLAGS: diff options (--fail, --failpercent, ...).
+# Grading: `make grade STUDENT=dir` grades dir/NAME.png (or .exr) against each reference
+# NAME.exr of REFRAY_REFS with refray grade (one line per image; a report per reference in
+# $(REFRAY_GRADE_DIR)/NAME: index.html, grades.csv, grades.json); the exit status is non-zero
+# when an image fails, has the wrong size or is missing. REFRAY_GRADE_FLAGS: refray grade's
+# options (--fail, --failpercent, --edge-tolerant, ...).
 REFRAY_REFS ?=
 REFRAY_GRADE_FLAGS ?=
+REFRAY_GRADE_DIR ?= grade-report
 .PHONY: grade
 grade: $(REFRAY_REFS)
 	@test -n "$(STUDENT)" || { echo "make grade STUDENT=dir (the student's images, named as the references)" >&2; exit 2; }
-	@fail=0; for ref in $(REFRAY_REFS); do \
+	@mkdir -p "$(REFRAY_GRADE_DIR)"; fail=0; for ref in $(REFRAY_REFS); do \
 	    name=$$(basename $$ref .exr); \
 	    img=$$(ls "$(STUDENT)/$$name.png" "$(STUDENT)/$$name.exr" 2>/dev/null | head -n 1); \
-	    if [ -z "$$img" ]; then echo "$$name: missing"; fail=1; continue; fi; \
-	    printf '%s: ' "$$name"; \
-	    kv=$$($(REFRAY) diff "$$img" $$ref $(REFRAY_GRADE_FLAGS) --kv); st=$$?; \
-	    echo "$$kv" | sed -n 's/^verdict=//p'; [ $$st -le 1 ] || fail=1; \
+	    out=$$($(REFRAY) grade $(REFRAY_GRADE_FLAGS) -o "$(REFRAY_GRADE_DIR)/$$name" $$ref \
+	                            "$${img:-$(STUDENT)/$$name.png}"); st=$$?; \
+	    printf '%s\n' "$$out" | grep -v '^[0-9]* submissions:'; [ $$st -le 1 ] || fail=1; \
 	done; exit $$fail
 
 -include $(shell find . -name '*.exr.d' -o -name '*.png.d' 2>/dev/null)
