@@ -685,6 +685,21 @@ static void t_grade_cli_errors(void)
     snprintf(cmd, sizeof cmd, "%s grade %s/ref.exr %s/good.png --out %s/r2 >/dev/null 2>&1", rf_test_bin(), dir, dir, dir);
     rf_test_run(cmd, &code);
     RF_CHECK_EQ_INT(code, 0);
+    /* a folder: every image in it, by name (other files skipped); one of the wrong size */
+    RfImage small;
+    snprintf(cmd, sizeof cmd, "mkdir %s/class && cp %s/good.png %s/class/a.png && echo x > %s/class/notes.txt", dir, dir,
+             dir, dir);
+    RF_CHECK(system(cmd) == 0);
+    snprintf(cmd, sizeof cmd, "%s/class/b.png", dir);
+    RF_CHECK_EQ_INT(rf_image_alloc(&small, 20, 15, 3), RF_OK);
+    RF_CHECK_EQ_INT(rf_png_write(cmd, &small, as_is, err, sizeof err), RF_OK);
+    rf_image_free(&small);
+    snprintf(cmd, sizeof cmd, "%s grade %s/ref.exr %s/class --out %s/r4 2>&1", rf_test_bin(), dir, dir, dir);
+    out = rf_test_run(cmd, &code);
+    RF_CHECK_EQ_INT(code, 3);
+    RF_CHECK(strstr(out, "a                    pass       100.0") != NULL);
+    RF_CHECK(strstr(out, "b                    wrong size   0.0  20 x 15, the reference is 40 x 30") != NULL);
+    RF_CHECK(strstr(out, "2 submissions: 1 pass, 0 warn, 0 fail, 0 unreadable, 1 wrong size") != NULL);
     struct {
         const char *args;
         int code;
