@@ -137,7 +137,7 @@ static void histogram(FILE *f, const RfSubmission *s, const RfDiffOptions *o)
 
 static const char *page_script =
     "<script>\n"
-    "var views={r:'img/reference.png',s:'img/%s.png',d:'img/%s-diff.png'},cur='s',zoom=%d;\n"
+    "var views={r:'img/reference.png',s:'img/%s.png'%s%s%s},cur='s',zoom=%d;\n"
     "var im=document.getElementById('im');\n"
     "function show(v){if(!views[v])return;cur=v;im.src=views[v];for(var k in views){var b=document.getElementById('b'+k);"
     "if(b)b.className=k==v?'on':'';}}\n"
@@ -201,7 +201,9 @@ int rf_grade_write_page(const RfGradeRun *run, const RfSubmission *s, char *err,
             fprintf(f, "<h2>Histogram of the pixel errors</h2>\n");
             histogram(f, s, &run->opt);
         }
-        fprintf(f, page_script, s->id, s->id, zoom, s->width > 0 ? s->width : run->width);
+        int diff = s->images > 1; /* the difference view only where there is one */
+        fprintf(f, page_script, s->id, diff ? ",d:'img/" : "", diff ? s->id : "", diff ? "-diff.png'" : "", zoom,
+                s->width > 0 ? s->width : run->width);
     }
     fprintf(f, "</body></html>\n");
     return out_close(&o, err, errsz);
