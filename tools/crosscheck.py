@@ -26,7 +26,9 @@ into a venv of its own, ~/.cache/refray/mitsuba-venv, and uses it from then on; 
 apt-get install povray).
 
 usage: tools/crosscheck.py [--refray build/refray] [--out report/crosscheck] [--samples 1024]
-                           [--install] [SCENE.rf ...]
+                           [--install] [SCENE.rf[:WxH] ...]
+(default: scenes/crosscheck/*.rf and scenes/soft.rf:128x128, whose area light and thin lens
+Mitsuba checks and POV-Ray cannot represent)
 """
 import argparse
 import html
@@ -141,8 +143,10 @@ def main():
     ap.add_argument("--install", action="store_true", help="pip install %s and numpy into a venv when missing" % MITSUBA_PIN)
     ap.add_argument("scenes", nargs="*")
     a = ap.parse_args()
+    # SCENE or SCENE:WxH (rendered and exported at that size)
     scenes = a.scenes or sorted(os.path.join(ROOT, "scenes", "crosscheck", f)
-                                for f in os.listdir(os.path.join(ROOT, "scenes", "crosscheck")) if f.endswith(".rf"))
+                                for f in os.listdir(os.path.join(ROOT, "scenes", "crosscheck")) if f.endswith(".rf")) + \
+        [os.path.join(ROOT, "scenes", "soft.rf") + ":128x128"]  # area light, thin lens (Mitsuba only)
     os.makedirs(a.out, exist_ok=True)
     if not have_mitsuba():
         venv_python(a.install)  # re-runs this script in the venv when Mitsuba is (or gets) there
@@ -155,12 +159,16 @@ def main():
         say("POV-Ray is not installed: skipped (apt-get install povray)")
     results, failed = [], 0
     for scene in scenes:
+        size = []
+        m = re.match(r"^(.*):(\d+)x(\d+)$", scene)
+        if m:
+            scene, size = m.group(1), ["--width", m.group(2), "--height", m.group(3)]
         name = os.path.splitext(os.path.basename(scene))[0]
         rel = os.path.relpath(scene, ROOT)
         r = {"scene": rel, "name": name}
         o = lambda suffix: os.path.join(a.out, name + suffix)
         t0 = time.time()
-        p = run([a.refray, "render", scene, "--samples", str(a.samples), "--sampler", "random", "--seed", "1",
+        p = run([a.refray, "render", scene] + size + ["--samples", str(a.samples), "--sampler", "random", "--seed", "1",
                  "-o", o(".refray.exr"), "--variance", o(".refray-var.exr"), "--png", o(".refray.png"), "--quiet"])
         if p.returncode != 0:
             say("%s: refray render failed: %s" % (rel, p.stderr.strip()))
@@ -170,9 +178,10 @@ def main():
             continue
         r["refray_seconds"] = round(time.time() - t0, 2)
         if use_mi:
-            p = run([a.refray, "export", "--quiet", "--mitsuba", o(".mitsuba.xml"), scene, "--samples", "1"])
+            p = run([a.refray, "export", "--quiet", "--mitsuba", o(".mitsuba.xml"), scene, "--samples", "1"] + size)
             if p.returncode == 2:  # refused: the scene holds what Mitsuba cannot represent
                 r["mitsuba"] = {"skipped": p.stderr.strip()}
+                say("%s: Mitsuba: not exportable, skipped (%s)" % (name, p.stderr.strip().splitlines()[0]))
             elif p.returncode != 0:
                 r["mitsuba"] = {"error": "refray export --mitsuba: " + p.stderr.strip()}
                 failed += 1
@@ -196,9 +205,10 @@ def main():
                     name, st.get("accepted"), st.get("pixels"), st.get("verdict"),
                     ", ".join("%.2f" % x for x in z), r["mitsuba"]["verdict"]))
         if use_pov:
-            p = run([a.refray, "export", "--quiet", "--pov", o(".pov"), scene])
+            p = run([a.refray, "export", "--quiet", "--pov", o(".pov"), scene] + size)
             if p.returncode == 2:
                 r["povray"] = {"skipped": p.stderr.strip()}
+                say("%s: POV-Ray: not exportable, skipped (%s)" % (name, p.stderr.strip().splitlines()[0]))
             elif p.returncode != 0:
                 r["povray"] = {"error": "refray export --pov: " + p.stderr.strip()}
                 failed += 1
@@ -208,7 +218,7 @@ def main():
                 q = run(["povray", "+I" + o(".pov"), "+O" + o(".povray.exr"), "+FE", "+W" + m.group(1),
                          "+H" + m.group(2), "-A", "-D", "-V", "+WT2"])
                 secs = round(time.time() - t0, 2)
-                run([a.refray, "render", scene, "--samples", "1", "-o", o(".refray1.exr"), "--quiet"])
+                run([a.refray, "render", scene, "--samples", "1", "-o", o(".refray1.exr"), "--quiet"] + size)
                 if q.returncode != 0:
                     r["povray"] = {"error": "povray: " + q.stderr.strip()[-500:]}
                     failed += 1

@@ -93,9 +93,11 @@ static void write_light(RfExCtx *c, const RfLight *l)
                       rf__ex_num(c, l->spot_cutoff), rf__ex_num(c, l->spot_cutoff));
         return;
     case RF_LIGHT_RECT: case RF_LIGHT_DISC: case RF_LIGHT_SPHERE: {
-        rf__ex_note(c, l->loc, 1, "%s area light: Mitsuba's area emitter is a shape, seen by camera and mirror "
-                    "rays (its path integrator 3.5.2 ignores hide_emitters) and blocking shadow rays; refray's is seen "
-                    "by none (written as an emitting shape: compare away from it)", rf_light_kind_name(l->kind));
+        /* depth 1 is written for the `direct` integrator, which hides the emitter from the camera */
+        rf__ex_note(c, l->loc, c->depth > 1, "%s area light: Mitsuba's area emitter is a shape that blocks shadow "
+                    "rays%s; refray's is seen by no ray and blocks nothing", rf_light_kind_name(l->kind),
+                    c->depth > 1 ? " and is seen by camera and mirror rays (the path integrator of Mitsuba 3.5.2 "
+                                   "ignores hide_emitters)" : "");
         if (l->two_sided)
             rf__ex_note(c, l->loc, 1, "two-sided %s light: Mitsuba's area emitters emit from the front only",
                         rf_light_kind_name(l->kind));
@@ -280,6 +282,8 @@ void rf__export_mitsuba(RfExCtx *c)
                   "    kr, specular_transmittance kt: F kr and (1 - F) kt as refray; Mitsuba scales the radiance by\n"
                   "    (eta_t/eta_i)^2 at each refraction, which cancels for light that enters and leaves a closed object\n"
                   "  - spot: cutoff_angle = beam_width = refray's cutoff (a hard edge; only exponent 0 is exact)\n"
+                  "  - depth 1 (no secondary rays): the `direct` integrator (light and BSDF samples with MIS at the\n"
+                  "    first hit: direct light only, emitters hidden from the camera)\n"
                   "  - max_depth = refray's depth + 1: Mitsuba samples the lights at every hit but the last, so the\n"
                   "    light at the hits 1 .. depth is counted, as refray's shadow rays. Mitsuba's path tracer also\n"
                   "    carries light from diffuse surface to diffuse surface (directly or via mirrors and glass),\n"
@@ -292,8 +296,11 @@ void rf__export_mitsuba(RfExCtx *c)
         if (c->out->text[i] == '-' && c->out->text[i + 1] == '-')
             c->out->text[i + 1] = ' ', i++;
     rf__ex_printf(c, "-->\n<scene version=\"3.0.0\">\n");
-    rf__ex_printf(c, "  <integrator type=\"path\"><integer name=\"max_depth\" value=\"%d\"/>%s</integrator>\n",
-                  c->depth + 1, area ? " <boolean name=\"hide_emitters\" value=\"true\"/>" : "");
+    if (c->depth == 1) /* direct light only; unlike `path`, `direct` hides area emitters from the camera */
+        rf__ex_printf(c, "  <integrator type=\"direct\"><boolean name=\"hide_emitters\" value=\"true\"/></integrator>\n");
+    else
+        rf__ex_printf(c, "  <integrator type=\"path\"><integer name=\"max_depth\" value=\"%d\"/>%s</integrator>\n",
+                      c->depth + 1, area ? " <boolean name=\"hide_emitters\" value=\"true\"/>" : "");
     double fov = 2.0 * atan(0.5 * (w.t - w.b) / w.d) * 180.0 / 3.14159265358979323846;
     int lens = s->camera.aperture > 0.0;
     rf__ex_printf(c, "  <sensor type=\"%s\">\n    <string name=\"fov_axis\" value=\"y\"/> <float name=\"fov\" value=\"%s\"/>\n",
