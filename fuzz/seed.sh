@@ -5,9 +5,10 @@
 # (libFuzzer mutates inputs of at most -max_len bytes); rf: scenes/*.rf and the docs' broken
 # example; obj, mtl: scenes/*.obj, *.mtl; exr: tests/data/golden/*.exr and the tiny images of
 # BUILD_DIR/mkseeds (every compression, HALF/FLOAT, Y/RGB/RGBA); png: mkseeds' PNGs (refray's
-# writer and libpng's other colour types, bit depths, interlacing) and the smaller docs/img
-# pictures; formula: up to three cases per id from tests/data/formula_cases_*.jsonl, one per
-# file, and tests/data/docs/cases.jsonl whole. The kept reproducers (tests/data/fuzz/<target>/)
+# writer and libpng's other colour types, bit depths, interlacing), the smaller docs/img
+# pictures and the PPM, JPEG, HDR and corrupt files of tests/data (read by signature too);
+# formula: up to three cases per id from tests/data/formula_cases_*.jsonl, one per file, and
+# tests/data/docs/cases.jsonl whole. The kept reproducers (tests/data/fuzz/<target>/)
 # are seeds too, once they no longer crash the target.
 set -eu
 B=${1:?usage: seed.sh BUILD_DIR}
@@ -41,6 +42,11 @@ for f in tests/data/golden/*.exr; do [ -f "$f" ] && cp "$f" "$S/exr/"; done
 "$B/mkseeds" "$S/exr" "$S/png"
 for f in docs/img/*.png; do
     [ -f "$f" ] && [ "$(wc -c < "$f")" -le 65536 ] && cp "$f" "$S/png/"
+done
+# the other formats rf_image_read dispatches to by signature (refray grade's students' files:
+# PPM, JPEG, HDR, and the corrupt samples of each format, tests/data/corrupt)
+for f in tests/data/docs/*.ppm tests/data/docs/*.jpg tests/data/docs/*.hdr tests/data/corrupt/*; do
+    [ -f "$f" ] && [ "$(wc -c < "$f")" -le 65536 ] && cp "$f" "$S/png/$(echo "$f" | tr / _)"
 done
 
 n=0

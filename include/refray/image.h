@@ -108,7 +108,7 @@ RfStatus rf_exr_write_opts(const char *path, const RfImage *img, const RfImageAt
                            RfExrOptions opt, char *err, size_t err_size);
 /* Reads an image, its format chosen by the file's signature (TGA, which has none, by the extension
  * .tga): EXR and Radiance HDR (linear floats, taken as they are), PNG, PPM/PGM/PBM (plain P1-P3 and
- * raw P4-P6), JPEG, BMP, GIF, TGA and TIFF (8- or 16-bit codes, display-encoded: decoded with the
+ * raw P4-P6), JPEG, BMP, TGA and TIFF (8- or 16-bit codes, display-encoded: decoded with the
  * given options' inverse curve into linear floats, like a PNG; a float TIFF is linear). PNG and EXR
  * through refray's readers below, the others through netpbm, stb_image and libtiff. On failure
  * *img is empty (data NULL). */
@@ -116,12 +116,12 @@ RfStatus rf_image_read(const char *path, RfPngOptions png_decode, RfImage *img, 
 
 typedef enum {
     RF_FILE_UNKNOWN, RF_FILE_EXR, RF_FILE_PNG, RF_FILE_PNM, RF_FILE_JPEG, RF_FILE_TIFF, RF_FILE_BMP, RF_FILE_HDR,
-    RF_FILE_GIF, RF_FILE_TGA
+    RF_FILE_TGA
 } RfImageFile;
 const char *rf_image_file_name(RfImageFile f); /* "EXR", "PNG", "PNM", "JPEG", ... */
 
 /* What was read: the format, and whether the file held display-encoded integer codes (decoded
- * with the curve: PNG, PNM, JPEG, BMP, GIF, TGA, integer TIFF) or linear floats (EXR, HDR,
+ * with the curve: PNG, PNM, JPEG, BMP, TGA, integer TIFF) or linear floats (EXR, HDR,
  * float TIFF). */
 typedef struct {
     RfImageFile format;

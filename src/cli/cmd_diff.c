@@ -45,7 +45,7 @@ static const RfCommand diff_cmd = {
     "refray diff [options] A B\n"
     "       refray diff --stat --var-a VA.exr --var-b VB.exr [options] A B\n",
     "A is the image under test, B the reference: EXR or HDR (linear), or PNG, PPM/PGM (P1-P6),\n"
-    "JPEG, TIFF, BMP, GIF, TGA (codes, decoded with --gamma G, default 2.2, or --srgb; a float\n"
+    "JPEG, TIFF, BMP, TGA (codes, decoded with --gamma G, default 2.2, or --srgb; a float\n"
     "TIFF is linear). --space display compares the gamma/sRGB-encoded values, so that one\n"
     "8-bit code is 1/255 (the default when A or B holds codes: grading a student's image);\n"
     "linear compares linear values (the default for two EXRs). --edge-tolerant forgives\n"

@@ -35,7 +35,7 @@ static const RfCommand grade_cmd = {
     "refray grade [options] REFERENCE SUBMISSION...\n",
     "Grades each SUBMISSION against REFERENCE (EXR, linear). A SUBMISSION is an image file, a folder\n"
     "(every image in it), or a CSV file of rows student,file (a header row is skipped; paths are\n"
-    "relative to the CSV). Images: PNG, PPM/PGM/PBM (P1-P6), JPEG, TIFF, BMP, GIF, TGA (display-\n"
+    "relative to the CSV). Images: PNG, PPM/PGM/PBM (P1-P6), JPEG, TIFF, BMP, TGA (display-\n"
     "encoded codes), HDR, EXR, float TIFF (linear, encoded with --gamma G, default 2.2, or --srgb).\n"
     "Compared in display values with the thresholds of refray diff (display defaults: --fail 1/255,\n"
     "--failpercent 0.1, --fail-mean 1/255, --warn 0.5/255, --warnpercent 0.1).\n",
@@ -85,7 +85,7 @@ static int has_suffix(const char *s, const char *suffix)
 static int is_image_name(const char *name)
 {
     static const char *const ext[] = {".png", ".ppm", ".pgm", ".pbm", ".pnm", ".jpg", ".jpeg", ".tif", ".tiff",
-                                      ".bmp", ".hdr", ".exr", ".gif", ".tga"};
+                                      ".bmp", ".hdr", ".exr", ".tga"};
     for (size_t i = 0; i < sizeof ext / sizeof ext[0]; i++)
         if (has_suffix(name, ext[i]))
             return 1;

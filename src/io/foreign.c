@@ -1,6 +1,6 @@
 /* The image formats students write besides EXR and PNG, read through Debian's libraries rather
  * than decoders of refray's own: netpbm (PBM/PGM/PPM, plain P1-P3 and raw P4-P6; stb_image reads
- * no plain PPM), stb_image (JPEG, BMP, TGA, GIF, Radiance HDR) and libtiff. Integer codes are
+ * no plain PPM), stb_image (JPEG, BMP, TGA, Radiance HDR) and libtiff. Integer codes are
  * decoded with the PNG options' curve, exactly as a PNG is (rf_io_decode_value); HDR and float
  * TIFF hold linear values and are taken as they are. Alpha is never curved. */
 #include "io_internal.h"
