@@ -1,11 +1,9 @@
 /* `refray export --mitsuba OUT.xml | --pbrt OUT.pbrt | --pov OUT.pov SCENE`: the scene for
  * another renderer, so that it can check refray's full ray-traced images (make crosscheck,
  * docs/crosscheck.md). The writers are in src/scene/export*.c. */
-#include <getopt.h>
 #include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
 
+#include "args.h"
 #include "cli.h"
 #include "exit_codes.h"
 #include "refray/image.h"
@@ -13,113 +11,87 @@
 #include "refray/scene_export.h"
 #include "refray/scene_io.h"
 
-static void usage(FILE *out)
-{
-    fprintf(out,
-            "usage: refray export (--mitsuba OUT.xml | --pbrt OUT.pbrt | --pov OUT.pov) [options] SCENE\n\n"
-            "Writes SCENE (.nff, .rf, .obj) for another renderer: what it can represent exactly (Lambertian\n"
-            "diffuse, mirrors, Fresnel glass, point/spot/directional lights, pinhole cameras, spheres,\n"
-            "triangles, polygons, planes, cylinders; area lights and thin lenses where the target has them),\n"
-            "with the conversions in the file's header comment (docs/crosscheck.md). Anything else (a Phong\n"
-            "highlight in Mitsuba, ambient light, a light without falloff in Mitsuba, ...) is named with its\n"
-            "file:line:col and refuses the export (exit 2, nothing written) unless --lossy.\n"
-            "  --mitsuba OUT.xml   Mitsuba 3 XML (triangles go to OUT-meshK.obj beside it)\n"
-            "  --pbrt OUT.pbrt     pbrt-v4\n"
-            "  --pov OUT.pov       POV-Ray 3.7 SDL (render with +FE -A; `// resolution W H` names the size)\n"
-            "  --width W --height H  the image size (default: the scene's; the field of view is read for it)\n"
-            "  --depth D           refray's recursion depth to match (default: the scene's)\n"
-            "  --samples N         samples per pixel for Mitsuba and pbrt (default: the scene's)\n"
-            "  --two-sided         every surface visible from both sides (as refray render --two-sided)\n"
-            "  --shadows opaque|filtered  the shadow rule refray renders with (default: the scene's)\n"
-            "  --nff-fov centres|edges    how NFF's angle is read (as refray render)\n"
-            "  --lossy             write the nearest thing for what cannot be represented, with a warning\n"
-            "  --quiet             no notes on stderr (refusals are still printed)\n"
-            "exit: 0 written, 2 refused (what the target cannot represent), 4 unreadable scene or unwritable\n"
-            "output, 5 usage\n");
-}
+enum { OPT_MITSUBA = RF_OPT_ID, OPT_PBRT, OPT_POV, OPT_WIDTH, OPT_HEIGHT, OPT_DEPTH, OPT_SAMPLES, OPT_TWO, OPT_SHADOWS,
+       OPT_LOSSY, OPT_QUIET };
 
-static int int_arg(const char *v, int lo, int hi, int *out)
-{
-    char *end;
-    long x = strtol(v, &end, 10);
-    if (*v == '\0' || *end != '\0' || x < lo || x > hi)
-        return 0;
-    *out = (int)x;
-    return 1;
-}
+static const RfOpt export_opts[] = {
+    {"mitsuba", OPT_MITSUBA, "OUT.xml", "Mitsuba 3 XML (triangles go to OUT-meshK.obj beside it)", NULL},
+    {"pbrt", OPT_PBRT, "OUT.pbrt", "pbrt-v4", NULL},
+    {"pov", OPT_POV, "OUT.pov", "POV-Ray 3.7 SDL (render with +FE -A; `// resolution W H` names the size)", NULL},
+    {"width", OPT_WIDTH, "W", "the image width (default: the scene's; the field of view is read for it)",
+     "a whole number in [1, 65536]"},
+    {"height", OPT_HEIGHT, "H", "the image height (default: the scene's)", "a whole number in [1, 65536]"},
+    {"depth", OPT_DEPTH, "D", "refray's recursion depth to match (default: the scene's)", "a whole number in [1, 1000]"},
+    {"samples", OPT_SAMPLES, "N", "samples per pixel for Mitsuba and pbrt (default: the scene's)",
+     "a whole number in [1, 1048576]"},
+    {"two-sided", OPT_TWO, NULL, "every surface visible from both sides (as refray render --two-sided)", NULL},
+    {"shadows", OPT_SHADOWS, "MODE", "opaque or filtered: the shadow rule refray renders with (default: the "
+     "scene's)", "opaque or filtered"},
+    {"lossy", OPT_LOSSY, NULL, "write the nearest thing for what cannot be represented, with a warning", NULL},
+    {"quiet", OPT_QUIET, NULL, "no notes on stderr (a refusal's are still printed)", NULL},
+    RF_OPT_TABLE_END,
+};
+
+static const RfOpt *const export_tables[] = {export_opts, rf_opts_load, NULL};
+
+static const RfCommand export_cmd = {
+    "refray export",
+    "refray export (--mitsuba OUT.xml | --pbrt OUT.pbrt | --pov OUT.pov) [options] SCENE\n",
+    "Writes SCENE (.nff, .rf, .obj) for another renderer: what it can represent exactly (Lambertian\n"
+    "diffuse, mirrors, Fresnel glass, point/spot/directional lights, pinhole and thin-lens cameras,\n"
+    "spheres, triangles, polygons, planes, cylinders; area lights where the target hides them as\n"
+    "refray does), with the conversions in the file's header comment (docs/crosscheck.md). Anything\n"
+    "else (a Phong highlight in Mitsuba, ambient light, a light without falloff in Mitsuba, ...) is\n"
+    "named with its file:line:col and refuses the export (nothing written) unless --lossy.\n",
+    export_tables,
+    "exit: 0 written, 2 refused (what the target cannot represent), 4 the scene cannot be read or an\n"
+    "output cannot be written, 5 usage (README: Exit codes)\n",
+};
 
 int rf_cmd_export(int argc, char **argv)
 {
-    enum { O_MITSUBA = 256, O_PBRT, O_POV, O_WIDTH, O_HEIGHT, O_DEPTH, O_SAMPLES, O_TWO, O_SHADOWS, O_FOV, O_LOSSY,
-           O_QUIET, O_HELP };
-    static const struct option longs[] = {
-        {"mitsuba", required_argument, NULL, O_MITSUBA}, {"pbrt", required_argument, NULL, O_PBRT},
-        {"pov", required_argument, NULL, O_POV},         {"width", required_argument, NULL, O_WIDTH},
-        {"height", required_argument, NULL, O_HEIGHT},  {"depth", required_argument, NULL, O_DEPTH},
-        {"samples", required_argument, NULL, O_SAMPLES}, {"two-sided", no_argument, NULL, O_TWO},
-        {"shadows", required_argument, NULL, O_SHADOWS}, {"nff-fov", required_argument, NULL, O_FOV},
-        {"lossy", no_argument, NULL, O_LOSSY},           {"quiet", no_argument, NULL, O_QUIET},
-        {"help", no_argument, NULL, O_HELP},             {NULL, 0, NULL, 0},
-    };
     RfExportOptions eo = rf_export_options_default();
     RfLoadOptions lo = rf_load_options_default();
-    const char *output = NULL;
-    int formats = 0, quiet = 0, c;
-    opterr = 0;
-    optind = 1;
-    while ((c = getopt_long(argc, argv, "h", longs, NULL)) != -1) {
-        const char *v = optarg;
-        switch (c) {
-        case O_MITSUBA: case O_PBRT: case O_POV:
-            eo.format = c == O_MITSUBA ? RF_EXPORT_MITSUBA : c == O_PBRT ? RF_EXPORT_PBRT : RF_EXPORT_POV;
+    const char *output = NULL, *path = NULL;
+    int formats = 0, quiet = 0, key;
+    RfOptParser p;
+    rf_opt_init(&p, &export_cmd, argc, argv);
+    while ((key = rf_opt_next(&p)) != RF_OPT_DONE) {
+        const char *v = p.value;
+        int ok = 1;
+        switch (key) {
+        case RF_OPT_EXIT:
+            return p.exit_code;
+        case OPT_MITSUBA: case OPT_PBRT: case OPT_POV:
+            eo.format = key == OPT_MITSUBA ? RF_EXPORT_MITSUBA : key == OPT_PBRT ? RF_EXPORT_PBRT : RF_EXPORT_POV;
             output = v;
             formats++;
             break;
-        case O_WIDTH: case O_HEIGHT: case O_DEPTH: case O_SAMPLES: {
-            int *dst = c == O_WIDTH ? &eo.width : c == O_HEIGHT ? &eo.height : c == O_DEPTH ? &eo.depth : &eo.samples;
-            if (!int_arg(v, 1, c == O_DEPTH ? 1000 : c == O_SAMPLES ? 1 << 20 : 65536, dst)) {
-                fprintf(stderr, "refray export: bad value '%s' for %s: a whole number in range (see: refray export "
-                        "--help)\n", v, argv[optind - 1]);
-                return RF_EXIT_USAGE;
-            }
-            break;
+        case OPT_WIDTH: ok = rf_arg_int(v, 1, 65536, &eo.width); break;
+        case OPT_HEIGHT: ok = rf_arg_int(v, 1, 65536, &eo.height); break;
+        case OPT_DEPTH: ok = rf_arg_int(v, 1, 1000, &eo.depth); break;
+        case OPT_SAMPLES: ok = rf_arg_int(v, 1, 1 << 20, &eo.samples); break;
+        case OPT_TWO: eo.two_sided = 1; break;
+        case OPT_SHADOWS: ok = (eo.shadows = rf_shadow_mode_parse(v)) >= 0; break;
+        case OPT_LOSSY: eo.lossy = 1; break;
+        case OPT_QUIET: quiet = 1; break;
+        default: ok = rf_arg_shared(key, v, &lo, NULL) > 0; break;
         }
-        case O_TWO: eo.two_sided = 1; break;
-        case O_LOSSY: eo.lossy = 1; break;
-        case O_QUIET: quiet = 1; break;
-        case O_SHADOWS:
-            if (strcmp(v, "opaque") != 0 && strcmp(v, "filtered") != 0) {
-                fprintf(stderr, "refray export: bad value '%s' for --shadows: opaque or filtered\n", v);
-                return RF_EXIT_USAGE;
-            }
-            eo.shadows = strcmp(v, "filtered") == 0 ? RF_SHADOWS_FILTERED : RF_SHADOWS_OPAQUE;
-            break;
-        case O_FOV:
-            if (strcmp(v, "centres") != 0 && strcmp(v, "edges") != 0) {
-                fprintf(stderr, "refray export: bad value '%s' for --nff-fov: centres or edges\n", v);
-                return RF_EXIT_USAGE;
-            }
-            lo.nff_fov = strcmp(v, "edges") == 0 ? RF_FOV_EDGES : RF_FOV_PIXEL_CENTRES;
-            break;
-        case 'h': case O_HELP:
-            usage(stdout);
-            return RF_EXIT_OK;
-        default:
-            fprintf(stderr, "refray export: unknown option or missing value '%s' (see: refray export --help)\n",
-                    argv[optind - 1]);
-            return RF_EXIT_USAGE;
-        }
+        if (!ok)
+            return rf_opt_bad_value(&p);
     }
-    if (formats != 1 || optind != argc - 1) {
-        fprintf(stderr, "refray export: %s (see: refray export --help)\n",
-                formats != 1 ? "give exactly one of --mitsuba, --pbrt, --pov" : "give one scene");
-        return RF_EXIT_USAGE;
-    }
-    const char *path = argv[optind];
+    if (formats != 1)
+        return rf_opt_usage_error(&export_cmd, "give exactly one of --mitsuba, --pbrt, --pov");
+    int bad = rf_opt_operand(&p, "the scene file", &path);
+    if (bad)
+        return bad;
+    const char *outs[1] = {output}, *ins[1] = {path};
+    if ((bad = rf_arg_outputs_check("refray export", outs, 1, ins, 1)) != 0)
+        return bad;
     char err[1024];
     RfScene scene;
     if (rf_scene_load(path, &lo, &scene, err, sizeof err) != RF_OK) {
-        fprintf(stderr, "%s\n", err);
+        rf_arg_report("refray export", err);
         return RF_EXIT_FILE;
     }
     eo.source = path;
