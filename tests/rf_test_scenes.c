@@ -1,7 +1,16 @@
-/* Helpers of the tests that go through every shipped scene or collect refray trace's events
- * (rf_test.h, rf_test_trace.h). */
+/* Helpers of the tests that go through every shipped scene, load scenes or collect refray
+ * trace's events (rf_test.h, rf_test_render.h). */
 #include "rf_test.h"
-#include "rf_test_trace.h"
+#include "rf_test_render.h"
+
+int rf_test_load_scene(const char *path, RfScene *s)
+{
+    char err[512];
+    if (rf_scene_load(path, NULL, s, err, sizeof err) == RF_OK)
+        return 1;
+    rf_test_fail(__FILE__, __LINE__, "%s", err);
+    return 0;
+}
 
 void rf_test_shipped_scenes(glob_t *g, int with_obj)
 {

@@ -13,6 +13,7 @@
 #include "refray/render.h"
 #include "refray/scene_io.h"
 #include "rf_test.h"
+#include "rf_test_render.h"
 
 enum { VECTOR, SCALAR, BRUTE, KINDS };
 
@@ -134,11 +135,8 @@ static void t_accel_images(void)
     rf_test_shipped_scenes(&g, 0);
     for (size_t i = 0; i < g.gl_pathc; i++) {
         RfScene s;
-        char err[512];
-        if (rf_scene_load(g.gl_pathv[i], NULL, &s, err, sizeof err) != RF_OK) {
-            rf_test_fail(__FILE__, __LINE__, "%s", err);
+        if (!rf_test_load_scene(g.gl_pathv[i], &s))
             continue;
-        }
         RfTriangleCount tc = rf_scene_triangle_count(&s);
         RfImage img[KINDS];
         for (int m = 0; m < KINDS; m++) {
@@ -244,11 +242,8 @@ static void t_accel_exact_edge_sign(void)
 static void t_accel_nonconvex_watertight(void)
 {
     RfScene s;
-    char err[512];
-    if (rf_scene_load(rf_test_data("verify/star_prism.nff"), NULL, &s, err, sizeof err) != RF_OK) {
-        rf_test_fail(__FILE__, __LINE__, "%s", err);
+    if (!rf_test_load_scene(rf_test_data("verify/star_prism.nff"), &s))
         return;
-    }
     RfTracer *t[KINDS];
     if (make_tracers(&s, t) != RF_OK) {
         rf_test_fail(__FILE__, __LINE__, "tracers");

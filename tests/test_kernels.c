@@ -11,6 +11,7 @@
 #include "refray/render.h"
 #include "refray/scene_io.h"
 #include "rf_test.h"
+#include "rf_test_render.h"
 
 static int render(const RfScene *s, unsigned kernel, int samples, int local, RfImage *img, RfRenderStats *st)
 {
@@ -31,11 +32,8 @@ static void t_kernels_identical(void)
     rf_test_shipped_scenes(&g, 1);
     for (size_t i = 0; i < g.gl_pathc; i++) {
         RfScene s;
-        char err[512];
-        if (rf_scene_load(g.gl_pathv[i], NULL, &s, err, sizeof err) != RF_OK) {
-            rf_test_fail(__FILE__, __LINE__, "%s", err);
+        if (!rf_test_load_scene(g.gl_pathv[i], &s))
             continue;
-        }
         const int modes[3][2] = {{1, 0}, {4, 0}, {1, 1}}; /* samples, local */
         for (int m = 0; m < 3; m++) {
             RfImage ref;

@@ -4,7 +4,7 @@
  * Hand-derived pixels, the teapot's lid gap, the walk against an independent count of crossings,
  * the defaults unchanged, refray trace with the options on, and POV-Ray where installed. */
 #include "rf_test.h"
-#include "rf_test_trace.h"
+#include "rf_test_render.h"
 
 #include <glob.h>
 #include <stdlib.h>
@@ -245,11 +245,8 @@ static void t_shadows_walk(void)
 static void t_two_sided_teapot(void)
 {
     RfScene s;
-    char err[512];
-    if (rf_scene_load("scenes/spd/teapot.nff", NULL, &s, err, sizeof err) != RF_OK) {
-        rf_test_fail(__FILE__, __LINE__, "%s", err);
+    if (!rf_test_load_scene("scenes/spd/teapot.nff", &s))
         return;
-    }
     RfRenderOptions o = rf_render_options_default();
     RfImage one, two;
     RfRenderStats st;
@@ -285,11 +282,8 @@ static void t_sides_trace(void)
     RfTestTraceLog *log = malloc(sizeof *log);
     for (int f = 0; f < 2; f++) {
         RfScene s;
-        char err[512];
-        if (rf_scene_load(scenes[f], NULL, &s, err, sizeof err) != RF_OK) {
-            rf_test_fail(__FILE__, __LINE__, "%s", err);
+        if (!rf_test_load_scene(scenes[f], &s))
             continue;
-        }
         const int w = 160, h = 120;
         RfRenderOptions o = rf_render_options_default();
         RfImage base, whole;
@@ -491,11 +485,8 @@ static void t_sides_defaults(void)
     rf_test_shipped_scenes(&g, 1);
     for (size_t i = 0; i < g.gl_pathc; i++) {
         RfScene s;
-        char err[512];
-        if (rf_scene_load(g.gl_pathv[i], NULL, &s, err, sizeof err) != RF_OK) {
-            rf_test_fail(__FILE__, __LINE__, "%s", err);
+        if (!rf_test_load_scene(g.gl_pathv[i], &s))
             continue;
-        }
         int all_two_sided = 1;
         for (size_t k = 0; k < s.prim_count; k++)
             all_two_sided &= (s.prims[k].flags & RF_PRIM_TWO_SIDED) != 0 || s.prims[k].type == RF_PRIM_INSTANCE;

@@ -4,7 +4,7 @@
  * reports add up, in the kernel's order, to what each ray returns: local + sum of weight x the
  * child ray's colour. The command's JSON parses and says the same. */
 #include "rf_test.h"
-#include "rf_test_trace.h"
+#include "rf_test_render.h"
 
 #include <cJSON.h>
 #include <stdlib.h>
@@ -58,11 +58,8 @@ static RfRgb replay(const RfTestTraceLog *l, int *i, int depth, int *bad)
 static void t_trace_reproduces_pixels(void)
 {
     RfScene s;
-    char err[512];
-    if (rf_scene_load("scenes/whitted.rf", NULL, &s, err, sizeof err) != RF_OK) {
-        rf_test_fail(__FILE__, __LINE__, "%s", err);
+    if (!rf_test_load_scene("scenes/whitted.rf", &s))
         return;
-    }
     /* (x, y) of a 160 x 120 whitted: ground, red sphere, mirror, glass, sky */
     static const int px[][2] = {{75, 75}, {35, 60}, {82, 50}, {112, 70}, {80, 5}};
     static const int spp[] = {1, 4};
