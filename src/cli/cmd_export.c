@@ -107,9 +107,9 @@ int rf_cmd_export(int argc, char **argv)
     if (ex.notes && (!quiet || st != RF_OK))
         fputs(ex.notes, stderr);
     if (st != RF_OK) {
-        fprintf(stderr, "refray export: %d feature%s of %s cannot be written for %s; nothing written (--lossy "
-                "writes the nearest thing)\n", ex.problems, ex.problems == 1 ? "" : "s", path,
-                rf_export_format_name(eo.format));
+        fprintf(stderr, "refray export: %d feature%s of %s cannot be written for %s; nothing written%s\n",
+                ex.problems, ex.problems == 1 ? "" : "s", path, rf_export_format_name(eo.format),
+                eo.lossy ? "" : " (--lossy writes the nearest thing)");
         rf_export_free(&ex);
         return RF_EXIT_FAIL;
     }

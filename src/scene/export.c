@@ -100,7 +100,7 @@ void rf__ex_note(RfExCtx *c, RfSrcLoc loc, int problem, const char *fmt, ...)
     va_end(ap);
     char line[1600];
     snprintf(line, sizeof line, "%s%s%s\n", head, body,
-             problem ? (c->o->lossy ? " (written approximately: --lossy)" : "") : "");
+             problem == 1 && c->o->lossy ? " (written approximately: --lossy)" : "");
     if (problem)
         ex->problems++;
     size_t n = strlen(line);
@@ -307,7 +307,8 @@ RfStatus rf_scene_export(const RfScene *scene, const RfExportOptions *opt, RfExp
         RfStatus st = rf_scene_flatten(scene, &flat, msg, sizeof msg);
         if (st != RF_OK) {
             RfSrcLoc none = {0, 0};
-            rf__ex_note(c, none, 1, "the scene graph cannot be written as plain primitives: %s", msg);
+            rf__ex_note(c, none, 2, "the scene graph cannot be written as plain primitives: %s (not even with "
+                        "--lossy)", msg);
             free(c);
             return st == RF_ERR_NOMEM ? RF_ERR_NOMEM : RF_ERR_DOMAIN;
         }

@@ -45,8 +45,9 @@ void rf__ex_printf(RfExCtx *c, const char *fmt, ...)
     ;
 /* Starts another file; path is copied. The current file becomes it. */
 RfExportFile *rf__ex_file(RfExCtx *c, const char *path);
-/* A note "source:line:col: fmt" (the line and column left out when loc has none); problem = 1:
- * something the target cannot represent. */
+/* A note "source:line:col: fmt" (the line and column left out when loc has none); problem 0: for
+ * information; 1: something the target cannot represent exactly (--lossy writes the nearest
+ * thing); 2: something that cannot be written at all. */
 void rf__ex_note(RfExCtx *c, RfSrcLoc loc, int problem, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 4, 5)))
