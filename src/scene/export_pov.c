@@ -132,17 +132,20 @@ static void write_light(RfExCtx *c, const RfLight *l, double fade, RfVec3 centre
     rf__ex_printf(c, " }\n");
 }
 
-static void write_prim(RfExCtx *c, const RfPrimitive *p, size_t *one_sided, RfSrcLoc *first_one_sided,
-                       int *smooth_noted)
+/* What the primitives share in their notes: each is noted once with a count and the first place. */
+typedef struct {
+    size_t one_sided, glass; /* one-sided non-spheres; transmitting non-spheres under opaque shadows */
+    RfSrcLoc first_one_sided, first_glass;
+    int smooth_noted;
+} PovTally;
+
+static void write_prim(RfExCtx *c, const RfPrimitive *p, PovTally *t)
 {
     const RfScene *s = c->s;
     const RfMaterial *m = &s->materials[p->material];
     int smooth = (p->flags & RF_PRIM_VERTEX_NORMALS) && (m->flags & RF_MAT_SMOOTH);
-    if (!(p->flags & RF_PRIM_TWO_SIDED) && !c->o->two_sided && p->type != RF_PRIM_SPHERE) {
-        if (!*one_sided)
-            *first_one_sided = p->loc;
-        ++*one_sided;
-    }
+    if (!(p->flags & RF_PRIM_TWO_SIDED) && !c->o->two_sided && p->type != RF_PRIM_SPHERE && !t->one_sided++)
+        t->first_one_sided = p->loc;
     switch (p->type) {
     case RF_PRIM_SPHERE:
         rf__ex_printf(c, "sphere { <%s>, %s\n", rf__ex_vec(c, p->u.sphere.center, ", "),
@@ -162,12 +165,12 @@ static void write_prim(RfExCtx *c, const RfPrimitive *p, size_t *one_sided, RfSr
         const RfVec3 *v = s->vertices + p->u.poly.first;
         int n = p->u.poly.count;
         if (smooth) {
-            if (!*smooth_noted) /* once: the SPD teapot has thousands */
+            if (!t->smooth_noted) /* once: the SPD teapot has thousands */
                 rf__ex_note(c, p->loc, 0, "%s with vertex normals (the first here), written as smooth_triangle: "
                             "where a shadow or mirror ray leaves a smoothed surface on the wrong side of its "
                             "geometric one, each renderer has its own rule (docs/crosscheck.md)",
                             rf_prim_type_name(p->type));
-            *smooth_noted = 1;
+            t->smooth_noted = 1;
             /* standalone triangles: POV-Ray drops a degenerate one with a warning, where an empty
              * mesh would be a parse error */
             const RfVec3 *nv = s->normals + p->u.poly.nfirst;
@@ -194,10 +197,8 @@ static void write_prim(RfExCtx *c, const RfPrimitive *p, size_t *one_sided, RfSr
     rf__ex_printf(c, "%s", material_ref(c, p->material));
     if (p->type == RF_PRIM_SPHERE && positive_kt(m) && !c->filtered)
         opaque_shadow_discs(c, p);
-    else if (positive_kt(m) && !c->filtered)
-        rf__ex_note(c, p->loc, 1, "transmitting %s: POV-Ray lets shadow rays through it, refray's shadows of "
-                    "transmitting objects are opaque (only spheres get a shadow disc; compare with refray "
-                    "--shadows filtered)", rf_prim_type_name(p->type));
+    else if (positive_kt(m) && !c->filtered && !t->glass++)
+        t->first_glass = p->loc;
 }
 
 void rf__export_pov(RfExCtx *c)
@@ -247,13 +248,16 @@ void rf__export_pov(RfExCtx *c)
         if (used[i])
             write_material(c, &s->materials[i], i);
     free(used);
-    size_t one_sided = 0;
-    int smooth_noted = 0;
-    RfSrcLoc first = {0, 0};
+    PovTally t;
+    memset(&t, 0, sizeof t);
     for (size_t i = 0; i < s->prim_count; i++)
         if (!(s->prims[i].flags & RF_PRIM_IN_OBJECT))
-            write_prim(c, &s->prims[i], &one_sided, &first, &smooth_noted);
-    if (one_sided)
-        rf__ex_note(c, first, 0, "%zu one-sided primitives (the first here): POV-Ray shows their back sides too "
-                    "(render refray with --two-sided to compare where a back side is seen)", one_sided);
+            write_prim(c, &s->prims[i], &t);
+    if (t.one_sided)
+        rf__ex_note(c, t.first_one_sided, 0, "%zu one-sided primitives (the first here): POV-Ray shows their back "
+                    "sides too (render refray with --two-sided to compare where a back side is seen)", t.one_sided);
+    if (t.glass)
+        rf__ex_note(c, t.first_glass, 1, "%zu transmitting primitives other than spheres (the first here): POV-Ray "
+                    "lets shadow rays through them, refray's shadows of transmitting objects are opaque (only "
+                    "spheres get a shadow disc; compare with refray --shadows filtered)", t.glass);
 }
