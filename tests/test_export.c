@@ -312,11 +312,32 @@ static void t_export_mitsuba_crosscheck(void)
         return;
     }
     snprintf(cmd, sizeof cmd, "python3 tools/crosscheck.py --refray %s --out %s --samples 64 scenes/crosscheck/mirror.rf "
-             "2>&1; echo \"exit=$?\"; rm -rf %s", rf_test_bin(), dir, dir);
+             "2>&1; echo \"exit=$?\"", rf_test_bin(), dir);
     const char *out = rf_test_run(cmd, &code);
     RF_CHECK(strstr(out, "mirror: Mitsuba: ") && strstr(out, "PASS") && strstr(out, "exit=0"));
     if (!strstr(out, "exit=0"))
         fprintf(stderr, "%s\n", out);
+    /* a planted bias must fail: refray's light 5 % brighter than the one Mitsuba renders (the
+     * export of the scene as it is); the image mean's z-test sees it (docs/crosscheck.md: 1 %
+     * gives |z| > 20 at 1024 samples, 5 % at 64 is beyond 20 too) */
+    snprintf(cmd, sizeof cmd,
+             "d=%s; sed 's/^light point -3 5 4  intensity 30$/light point -3 5 4  intensity 31.5/' "
+             "scenes/crosscheck/mirror.rf > $d/biased.rf && grep -q 'intensity 31.5' $d/biased.rf && "
+             "%s render $d/biased.rf --samples 64 --sampler random --seed 1 -o $d/rf.exr --variance $d/rfv.exr --quiet && "
+             "%s export --quiet --mitsuba $d/mi.xml scenes/crosscheck/mirror.rf --samples 1 && "
+             "python3 -c \"import sys; sys.path.insert(0, 'tools'); import crosscheck as cc; "
+             "m, v = cc.mitsuba_render('$d/mi.xml', 64, '$d/mi.exr', '$d/miv.exr', '$d/mi.png'); "
+             "d, se, z, ref = cc.global_test(m, v, cc.read_exr('$d/rf.exr'), cc.read_exr('$d/rfv.exr')); "
+             "print('z=%%.1f' %% min(z))\" 2>&1; rm -rf $d",
+             dir, rf_test_bin(), rf_test_bin());
+    out = rf_test_run(cmd, &code);
+    const char *z = strstr(out, "z=");
+    double zv = z ? strtod(z + 2, NULL) : 0.0;
+    if (!(zv < -10.0))
+        rf_test_fail(__FILE__, __LINE__, "a 5 %% brighter light in refray: image mean z = %g, expected below -10 "
+                     "(output: %s)", zv, out);
+    rf_test_checks++;
+    fprintf(stderr, "  crosscheck: a 5 %% brighter light in refray gives image mean z = %.1f\n", zv);
 }
 
 const RfTest rf_tests_export[] = {
