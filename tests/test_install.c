@@ -263,17 +263,17 @@ static void t_install_pkgconfig_man_completion(void)
                       : "grep -c '^.SH SYNOPSIS' \"$d/$p.1\"");
     if ((out = run_ok(cmd, __LINE__)))
         RF_CHECK_STR(out, "1\n1\n1\n1\n");
-    /* completion: `refray re<TAB>` -> render; options of a command; an option's values; the
-     * link for refray-raster */
+    /* completion: `refray re<TAB>` -> render; options of a command; an option's values; a
+     * formula id; the link for refray-raster */
     snprintf(cmd, sizeof cmd,
              "bash -c 'source \"%s/usr/share/bash-completion/completions/refray\"; "
              "c() { COMP_WORDS=(\"$@\"); COMP_CWORD=$(($# - 1)); COMPREPLY=(); _refray; echo \"${COMPREPLY[*]}\"; }; "
              "c refray re; c refray render --samp; c refray render --sampler so; c refray render --sampler = so; "
-             "c refray-raster --gl=e; "
+             "c refray-raster --gl=e; c refray formula fres; "
              "c refray di; readlink \"%s/usr/share/bash-completion/completions/refray-raster\"'",
              dir, dir);
     if ((out = run_ok(cmd, __LINE__)))
-        RF_CHECK_STR(out, "render\n--sampler --samples\nsobol\nsobol\negl\ndiff\nrefray\n");
+        RF_CHECK_STR(out, "render\n--sampler --samples\nsobol\nsobol\negl\nfresnel\ndiff\nrefray\n");
     /* uninstall: every file and link gone */
     snprintf(cmd, sizeof cmd, "sh tools/install.sh uninstall '' '%s/usr' '%s/usr/lib' && find '%s/usr' ! -type d | wc -l",
              dir, dir, dir);

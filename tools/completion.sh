@@ -38,6 +38,9 @@ arm() {
         "$name" "$(options "$@")" "$(values "$@")"
 }
 
+# the formula ids, as `refray formula list` names them (refray formula <TAB>)
+formulas=$("$build/refray" formula list 2>/dev/null | awk '/^[a-z]/ { print $1 }' | tr '\n' ' ')
+
 cat <<'EOF'
 # bash completion for refray, refray-raster, refray-verify and refray-view: generated from their
 # --help text by tools/completion.sh (do not edit; make install puts it into
@@ -56,6 +59,10 @@ cat <<'EOF'
         fi
         cmd="refray ${COMP_WORDS[1]}"
     fi
+EOF
+printf '    if [[ $cmd == "refray formula" && COMP_CWORD -eq 2 && $cur != -* ]]; then\n'
+printf '        COMPREPLY=($(compgen -W "list %s" -- "$cur"))\n        return\n    fi\n' "$formulas"
+cat <<'EOF'
     # --opt=value: complete the value; bash splits "--opt=v" into "--opt" "=" "v" (its
     # COMP_WORDBREAKS), and without that into one word
     if [[ $cur == = ]]; then
