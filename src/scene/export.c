@@ -282,6 +282,25 @@ void rf__ex_check_hither(RfExCtx *c)
                 rf_export_format_name(c->o->format));
 }
 
+void rf__ex_note_one_sided(RfExCtx *c, const char *back)
+{
+    const RfScene *s = c->s;
+    size_t n = 0;
+    RfSrcLoc first = {0, 0};
+    if (c->o->two_sided)
+        return;
+    for (size_t i = 0; i < s->prim_count; i++) {
+        const RfPrimitive *p = &s->prims[i];
+        /* a sphere's back is seen only from inside it */
+        if (!(p->flags & (RF_PRIM_IN_OBJECT | RF_PRIM_TWO_SIDED)) && p->type != RF_PRIM_SPHERE && !n++)
+            first = p->loc;
+    }
+    if (n)
+        rf__ex_note(c, first, 0, "%zu one-sided primitives (the first here): refray lets rays through their back, "
+                    "%s %s (render refray with --two-sided to compare where a back is seen)", n,
+                    rf_export_format_name(c->o->format), back);
+}
+
 /* The §3.4 basis: w = normalise(eye - target), u = normalise(up x w), v = w x u. */
 static void camera_basis(RfExCtx *c)
 {

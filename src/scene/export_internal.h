@@ -73,6 +73,10 @@ void rf__ex_common_checks(RfExCtx *c, int area_ok, int lens_ok);
 /* A note when the camera's near plane (hither) may cut the scene: POV-Ray and pbrt have none. */
 void rf__ex_check_hither(RfExCtx *c);
 
+/* One note for the world's one-sided primitives but spheres (none with --two-sided): how the
+ * target shows their back (`back`, e.g. "shows it black"). */
+void rf__ex_note_one_sided(RfExCtx *c, const char *back);
+
 /* A unit vector perpendicular to n (unit). */
 RfVec3 rf__ex_perpendicular(RfVec3 n);
 

@@ -328,25 +328,15 @@ void rf__export_mitsuba(RfExCtx *c)
         c->ex->failed = 1;
         return;
     }
-    size_t one_sided = 0;
-    RfSrcLoc first_one = {0, 0};
-    for (size_t i = 0; i < s->prim_count; i++) {
-        const RfPrimitive *p = &s->prims[i];
-        if (p->flags & RF_PRIM_IN_OBJECT)
-            continue;
-        used[p->material] |= sided_of(c, p) ? 2 : 1;
-        if (!sided_of(c, p) && p->type != RF_PRIM_SPHERE && !one_sided++)
-            first_one = p->loc;
-    }
+    for (size_t i = 0; i < s->prim_count; i++)
+        if (!(s->prims[i].flags & RF_PRIM_IN_OBJECT))
+            used[s->prims[i].material] |= sided_of(c, &s->prims[i]) ? 2 : 1;
     for (size_t i = 0; i < s->material_count; i++)
         for (int t = 0; t < 2; t++)
             if (used[i] & (1 << t))
                 write_bsdf(c, i, t);
     free(used);
-    if (one_sided)
-        rf__ex_note(c, first_one, 0, "%zu one-sided primitives (the first here): refray lets rays through their "
-                    "back, Mitsuba shows it black (render refray with --two-sided to compare where a back is seen)",
-                    one_sided);
+    rf__ex_note_one_sided(c, "shows it black and stops rays there");
     double plane_size = 1e3 * extent;
     int meshes = 0, *keys = NULL;
     for (size_t i = 0; i < s->prim_count; i++) {

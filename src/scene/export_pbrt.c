@@ -195,17 +195,8 @@ void rf__export_pbrt(RfExCtx *c)
                       rf__ex_rgb(c, s->render.background, " "));
     for (size_t i = 0; i < s->light_count; i++)
         light(c, &s->lights[i]);
-    size_t one_sided = 0;
-    RfSrcLoc first = {0, 0};
-    for (size_t i = 0; i < s->prim_count; i++) {
-        const RfPrimitive *p = &s->prims[i];
-        if (p->flags & RF_PRIM_IN_OBJECT)
-            continue;
-        if (!(p->flags & RF_PRIM_TWO_SIDED) && !c->o->two_sided && p->type != RF_PRIM_SPHERE && !one_sided++)
-            first = p->loc;
-        shape(c, p, 1e3 * extent);
-    }
-    if (one_sided)
-        rf__ex_note(c, first, 0, "%zu one-sided primitives (the first here): pbrt-v4 shows their back sides too",
-                    one_sided);
+    for (size_t i = 0; i < s->prim_count; i++)
+        if (!(s->prims[i].flags & RF_PRIM_IN_OBJECT))
+            shape(c, &s->prims[i], 1e3 * extent);
+    rf__ex_note_one_sided(c, "shades it");
 }

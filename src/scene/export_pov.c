@@ -134,8 +134,8 @@ static void write_light(RfExCtx *c, const RfLight *l, double fade, RfVec3 centre
 
 /* What the primitives share in their notes: each is noted once with a count and the first place. */
 typedef struct {
-    size_t one_sided, glass; /* one-sided non-spheres; transmitting non-spheres under opaque shadows */
-    RfSrcLoc first_one_sided, first_glass;
+    size_t glass; /* transmitting non-spheres under opaque shadows */
+    RfSrcLoc first_glass;
     int smooth_noted;
 } PovTally;
 
@@ -144,8 +144,6 @@ static void write_prim(RfExCtx *c, const RfPrimitive *p, PovTally *t)
     const RfScene *s = c->s;
     const RfMaterial *m = &s->materials[p->material];
     int smooth = (p->flags & RF_PRIM_VERTEX_NORMALS) && (m->flags & RF_MAT_SMOOTH);
-    if (!(p->flags & RF_PRIM_TWO_SIDED) && !c->o->two_sided && p->type != RF_PRIM_SPHERE && !t->one_sided++)
-        t->first_one_sided = p->loc;
     switch (p->type) {
     case RF_PRIM_SPHERE:
         rf__ex_printf(c, "sphere { <%s>, %s\n", rf__ex_vec(c, p->u.sphere.center, ", "),
@@ -253,9 +251,7 @@ void rf__export_pov(RfExCtx *c)
     for (size_t i = 0; i < s->prim_count; i++)
         if (!(s->prims[i].flags & RF_PRIM_IN_OBJECT))
             write_prim(c, &s->prims[i], &t);
-    if (t.one_sided)
-        rf__ex_note(c, t.first_one_sided, 0, "%zu one-sided primitives (the first here): POV-Ray shows their back "
-                    "sides too (render refray with --two-sided to compare where a back side is seen)", t.one_sided);
+    rf__ex_note_one_sided(c, "shades it");
     if (t.glass)
         rf__ex_note(c, t.first_glass, 1, "%zu transmitting primitives other than spheres (the first here): POV-Ray "
                     "lets shadow rays through them, refray's shadows of transmitting objects are opaque (only "
