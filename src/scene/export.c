@@ -205,15 +205,9 @@ void rf__ex_common_checks(RfExCtx *c, int area_ok, int lens_ok)
     const RfScene *s = c->s;
     const char *to = rf_export_format_name(c->o->format);
     /* only materials a primitive uses, each noted once */
-    unsigned char *used = calloc(s->material_count ? s->material_count : 1, 1);
-    if (!used) {
-        c->ex->failed = 1;
+    unsigned char *used = rf__ex_used_materials(c);
+    if (!used)
         return;
-    }
-    for (size_t i = 0; i < s->prim_count; i++)
-        if (s->prims[i].type != RF_PRIM_INSTANCE && s->prims[i].material >= 0 &&
-            (size_t)s->prims[i].material < s->material_count)
-            used[s->prims[i].material] = 1;
     for (size_t i = 0; i < s->material_count; i++) {
         if (!used[i])
             continue;
@@ -280,6 +274,23 @@ void rf__ex_check_hither(RfExCtx *c)
     rf__ex_note(c, s->camera.loc, 0, "camera: hither %s: %s's camera has no near plane; the scene's bounds reach "
                 "nearer, so compare the images there with care", rf__ex_num(c, s->camera.hither),
                 rf_export_format_name(c->o->format));
+}
+
+unsigned char *rf__ex_used_materials(RfExCtx *c)
+{
+    const RfScene *s = c->s;
+    unsigned char *used = calloc(s->material_count ? s->material_count : 1, 1);
+    if (!used) {
+        c->ex->failed = 1;
+        return NULL;
+    }
+    for (size_t i = 0; i < s->prim_count; i++) {
+        const RfPrimitive *p = &s->prims[i];
+        if (!(p->flags & RF_PRIM_IN_OBJECT) && p->type != RF_PRIM_INSTANCE && p->material >= 0 &&
+            (size_t)p->material < s->material_count)
+            used[p->material] |= (p->flags & RF_PRIM_TWO_SIDED) || c->o->two_sided ? 2 : 1;
+    }
+    return used;
 }
 
 void rf__ex_note_one_sided(RfExCtx *c, const char *back)

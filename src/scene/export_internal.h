@@ -73,6 +73,11 @@ void rf__ex_common_checks(RfExCtx *c, int area_ok, int lens_ok);
 /* A note when the camera's near plane (hither) may cut the scene: POV-Ray and pbrt have none. */
 void rf__ex_check_hither(RfExCtx *c);
 
+/* Which materials the world's primitives use, per material: bit 1 by a one-sided primitive, bit 2
+ * by a two-sided one (every one with --two-sided); malloc'd, NULL (ex->failed set) without
+ * memory. */
+unsigned char *rf__ex_used_materials(RfExCtx *c);
+
 /* One note for the world's one-sided primitives but spheres (none with --two-sided): how the
  * target shows their back (`back`, e.g. "shows it black"). */
 void rf__ex_note_one_sided(RfExCtx *c, const char *back);

@@ -323,14 +323,9 @@ void rf__export_mitsuba(RfExCtx *c)
     for (size_t i = 0; i < s->light_count; i++)
         write_light(c, &s->lights[i]);
     /* the BSDFs the primitives use, one-sided and two-sided apart */
-    unsigned char *used = calloc(s->material_count ? s->material_count : 1, 1);
-    if (!used) {
-        c->ex->failed = 1;
+    unsigned char *used = rf__ex_used_materials(c);
+    if (!used)
         return;
-    }
-    for (size_t i = 0; i < s->prim_count; i++)
-        if (!(s->prims[i].flags & RF_PRIM_IN_OBJECT))
-            used[s->prims[i].material] |= sided_of(c, &s->prims[i]) ? 2 : 1;
     for (size_t i = 0; i < s->material_count; i++)
         for (int t = 0; t < 2; t++)
             if (used[i] & (1 << t))

@@ -234,14 +234,9 @@ void rf__export_pov(RfExCtx *c)
                   rf__ex_vec(c, rf_vec3_scale(c->u, w.r - w.l), ", "), rf__ex_vec(c, rf_vec3_scale(c->v, w.t - w.b), ", "));
     for (size_t i = 0; i < s->light_count; i++)
         write_light(c, &s->lights[i], fade, centre, extent);
-    unsigned char *used = calloc(s->material_count ? s->material_count : 1, 1);
-    if (!used) {
-        c->ex->failed = 1;
+    unsigned char *used = rf__ex_used_materials(c);
+    if (!used)
         return;
-    }
-    for (size_t i = 0; i < s->prim_count; i++)
-        if (!(s->prims[i].flags & RF_PRIM_IN_OBJECT))
-            used[s->prims[i].material] = 1;
     for (size_t i = 0; i < s->material_count; i++)
         if (used[i])
             write_material(c, &s->materials[i], i);
