@@ -144,9 +144,10 @@ def main():
     ap.add_argument("scenes", nargs="*")
     a = ap.parse_args()
     # SCENE or SCENE:WxH (rendered and exported at that size)
-    scenes = a.scenes or sorted(os.path.join(ROOT, "scenes", "crosscheck", f)
-                                for f in os.listdir(os.path.join(ROOT, "scenes", "crosscheck")) if f.endswith(".rf")) + \
-        [os.path.join(ROOT, "scenes", "soft.rf") + ":128x128"]  # area light, thin lens (Mitsuba only)
+    # relative to the current folder (make's: the tree), so that messages name scenes as make does
+    scenes = a.scenes or [os.path.relpath(x) for x in sorted(
+        os.path.join(ROOT, "scenes", "crosscheck", f) for f in os.listdir(os.path.join(ROOT, "scenes", "crosscheck"))
+        if f.endswith(".rf"))] + [os.path.relpath(os.path.join(ROOT, "scenes", "soft.rf")) + ":128x128"]
     os.makedirs(a.out, exist_ok=True)
     if not have_mitsuba():
         venv_python(a.install)  # re-runs this script in the venv when Mitsuba is (or gets) there
