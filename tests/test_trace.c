@@ -148,8 +148,50 @@ static void t_trace_command(void)
     RF_CHECK(code == 5 && strstr(out, "pixel (640, 0) is not in the 640x480 image"));
 }
 
+/* --sample S: exactly the events of sample S in the full trace (same numbers, same order), then
+ * the pixel; a sample the pixel does not have is refused. */
+static void t_trace_one_sample(void)
+{
+    char cmd[512];
+    int code;
+    snprintf(cmd, sizeof cmd, "%s trace scenes/whitted.rf 448 280 --width 640 --samples 4 --json", rf_test_bin());
+    cJSON *all = cJSON_Parse(rf_test_run(cmd, &code));
+    RF_CHECK_EQ_INT(code, 0);
+    snprintf(cmd, sizeof cmd, "%s trace scenes/whitted.rf 448 280 --width 640 --samples 4 --sample=2 --json",
+             rf_test_bin());
+    cJSON *one = cJSON_Parse(rf_test_run(cmd, &code));
+    RF_CHECK_EQ_INT(code, 0);
+    RF_CHECK(all && one);
+    if (all && one) {
+        cJSON *ea = cJSON_GetObjectItem(all, "events"), *eo = cJSON_GetObjectItem(one, "events");
+        int na = cJSON_GetArraySize(ea), no = cJSON_GetArraySize(eo), k = 0, samples = 0;
+        for (int i = 0; i < na; i++) {
+            cJSON *e = cJSON_GetArrayItem(ea, i);
+            const char *kind = cJSON_GetObjectItem(e, "event")->valuestring;
+            samples += strcmp(kind, "sample") == 0;
+            if (strcmp(kind, "pixel") != 0 && cJSON_GetObjectItem(e, "sample")->valueint != 2)
+                continue;
+            char *a = cJSON_PrintUnformatted(e), *b = k < no ? cJSON_PrintUnformatted(cJSON_GetArrayItem(eo, k)) : NULL;
+            RF_CHECK(b && strcmp(a, b) == 0);
+            free(a);
+            free(b);
+            k++;
+        }
+        RF_CHECK_EQ_INT(samples, 4);
+        RF_CHECK_EQ_INT(k, no);
+        RF_CHECK(no > 3 && no < na);
+    }
+    cJSON_Delete(all);
+    cJSON_Delete(one);
+    snprintf(cmd, sizeof cmd, "%s trace scenes/whitted.rf 448 280 --samples 4 --sample 4 2>&1 >/dev/null",
+             rf_test_bin());
+    const char *out = rf_test_run(cmd, &code);
+    RF_CHECK(code == 5 && strstr(out, "the pixel has 4 camera samples (0 .. 3): no sample 4"));
+}
+
 const RfTest rf_tests_trace[] = {
     {"trace_reproduces_pixels", t_trace_reproduces_pixels},
     {"trace_command", t_trace_command},
+    {"trace_one_sample", t_trace_one_sample},
     RF_TEST_END,
 };

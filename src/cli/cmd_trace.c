@@ -12,11 +12,13 @@
 #include "refray/render.h"
 #include "refray/scene_io.h"
 
-enum { OPT_JSON = RF_OPT_ID };
+enum { OPT_JSON = RF_OPT_ID, OPT_SAMPLE };
 
 static const RfOpt trace_opts[] = {
     {"json", OPT_JSON, NULL, "the same as one JSON object: {\"scene\", \"settings\", \"pixel\", \"events\": [...]}",
      NULL},
+    {"sample", OPT_SAMPLE, "S", "only camera sample S of the pixel (0 .. samples - 1), and the pixel's value",
+     "an integer >= 0"},
     RF_OPT_TABLE_END,
 };
 
@@ -38,6 +40,8 @@ static const RfCommand trace_cmd = {
 typedef struct {
     const RfScene *scene;
     int json, first;
+    int only_sample; /* --sample S, or -1 for every sample */
+    int samples;     /* the pixel's camera samples, as the kernel numbers them */
 } Printer;
 
 static void v3(FILE *f, RfVec3 v, int json)
@@ -223,6 +227,11 @@ static void print_tree(Printer *p, const RfTraceEvent *e)
 static void on_event(void *ctx, const RfTraceEvent *e)
 {
     Printer *p = ctx;
+    if (e->kind == RF_TRACE_SAMPLE && e->sample + 1 > p->samples)
+        p->samples = e->sample + 1;
+    /* --sample S: the other samples' rays are left out; the pixel's value (their mean) stays */
+    if (p->only_sample >= 0 && e->kind != RF_TRACE_PIXEL && e->sample != p->only_sample)
+        return;
     if (p->json)
         print_json(p, e);
     else
@@ -232,7 +241,7 @@ static void on_event(void *ctx, const RfTraceEvent *e)
 int rf_cmd_trace(int argc, char **argv)
 {
     const char *scene_path = NULL;
-    int xy[2] = {-1, -1}, json = 0;
+    int xy[2] = {-1, -1}, json = 0, only_sample = -1;
     RfRenderOptions opt = rf_render_options_default();
     RfLoadOptions lopt = rf_load_options_default();
     RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
@@ -245,6 +254,8 @@ int rf_cmd_trace(int argc, char **argv)
             return op.exit_code;
         if (key == OPT_JSON)
             json = 1;
+        else if (key == OPT_SAMPLE)
+            r = rf_arg_int(op.value, 0, 1 << 30, &only_sample) ? 1 : -1;
         else if ((r = rf_arg_render(key, op.value, &opt)) == 0)
             r = rf_arg_shared(key, op.value, &lopt, &popt);
         if (r < 0)
@@ -276,7 +287,7 @@ int rf_cmd_trace(int argc, char **argv)
         rf_scene_free(&scene);
         return RF_EXIT_USAGE;
     }
-    Printer p = {&scene, json, 1};
+    Printer p = {&scene, json, 1, only_sample, 0};
     char settings[512];
     if (!rf_render_describe(&scene, &opt, settings, sizeof settings))
         settings[0] = 0;
@@ -304,5 +315,10 @@ int rf_cmd_trace(int argc, char **argv)
         return rs == RF_ERR_DOMAIN ? RF_EXIT_USAGE : RF_EXIT_FAIL;
     }
     rf_image_free(&img);
+    if (only_sample >= p.samples) {
+        fprintf(stderr, "refray trace: the pixel has %d camera sample%s (0 .. %d): no sample %d\n", p.samples,
+                p.samples == 1 ? "" : "s", p.samples - 1, only_sample);
+        return RF_EXIT_USAGE;
+    }
     return 0;
 }
