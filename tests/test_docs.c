@@ -1,9 +1,17 @@
-/* The documentation's examples are what the commands print: every `$ refray ...` line in a
- * fenced block of README.md and docs/ (every .md there) is run (from a scratch folder holding scenes/, docs/ and the
- * files the examples name, tests/data/docs/), and the lines below it must be its output
- * (stdout and stderr), in order. A line `...` stands for any number of lines; the example may
- * stop before the output does. Trailing blanks do not count. Run times, rays per second, the idle share and the thread count
- * (which depend on the machine) are compared as "#"; every other character must match. */
+/* The documentation's examples are what the commands print (issue 17: they must not drift):
+ * every `$ refray...` line (refray-raster, refray-view and the others too) in a fenced block of
+ * README.md and of every .md file in docs/ is run from a scratch folder holding scenes/, docs/, out/ and
+ * the files the examples name (tests/data/docs/), and the lines below it, up to the next `$ `
+ * line or the fence, must be its whole output (stdout and stderr), line for line; a command
+ * continued with a trailing backslash is one command. The normalisation, and nothing else:
+ *  - a line `...` stands for any number of lines (an example that shows only the start of a
+ *    long output ends with it);
+ *  - `…` within a line stands for any text (a value that depends on the machine or the date);
+ *  - run times, rays per second, the idle share and the thread count (numbers before " s",
+ *    " Mrays/s", " % idle", " thread(s)") are compared as "#";
+ *  - trailing blanks of a line and blank lines at the end of an example do not count.
+ * Every other character must match. `$ ` lines of other programs (make, cc) end an example and
+ * are not run. */
 #define _XOPEN_SOURCE 700
 #include <dirent.h>
 #include <limits.h>
@@ -46,7 +54,27 @@ static void mask_line(const char *s, char *out, size_t cap)
     out[n] = 0;
 }
 
-/* Does `actual` (the command's output) show `expected` (the example's lines, '\n'-separated)? */
+/* Does one masked actual line match one masked expected line, where `…` stands for any text? */
+static int line_matches(const char *e, const char *a)
+{
+    static const char ell[] = "\xe2\x80\xa6"; /* … */
+    const char *star = strstr(e, ell);
+    if (!star)
+        return strcmp(e, a) == 0;
+    size_t head = (size_t)(star - e);
+    if (strncmp(e, a, head) != 0)
+        return 0;
+    const char *rest = star + 3;
+    for (const char *t = a + head;; t++) { /* the shortest text that lets the rest match */
+        if (line_matches(rest, t))
+            return 1;
+        if (!*t)
+            return 0;
+    }
+}
+
+/* Is `actual` (the command's output) `expected` (the example's lines, '\n'-separated) under the
+ * normalisation above? */
 static int output_matches(const char *expected, const char *actual, char *why, size_t cap)
 {
     char el[4096], al[4096], me[4096], ma[4096];
@@ -70,7 +98,7 @@ static int output_matches(const char *expected, const char *actual, char *why, s
             snprintf(al, sizeof al, "%.*s", (int)j, a);
             a += j + (a[j] == '\n');
             mask_line(al, ma, sizeof ma);
-            if (strcmp(me, ma) == 0)
+            if (line_matches(me, ma))
                 break;
             if (!skipping) {
                 snprintf(why, cap, "expected: %s\n    printed:  %s", el, al);
@@ -79,7 +107,29 @@ static int output_matches(const char *expected, const char *actual, char *why, s
         }
         skipping = 0;
     }
+    if (!skipping && a[strspn(a, "\n")]) { /* more output than the example shows */
+        size_t j = strcspn(a + strspn(a, "\n"), "\n");
+        snprintf(why, cap, "printed more than the example shows (end it with a line '...'), from: %.*s", (int)j,
+                 a + strspn(a, "\n"));
+        return 0;
+    }
     return 1;
+}
+
+/* Runs one example (its command line from "$ refray" on, its expected lines) from dir. */
+static void run_example(const char *md, int line, const char *cmd, char *expected, const char *bin, const char *dir)
+{
+    size_t n = strlen(expected);
+    while (n > 0 && expected[n - 1] == '\n' && (n == 1 || expected[n - 2] == '\n'))
+        expected[--n] = 0; /* blank lines at the end do not count */
+    static char full[1 << 15];
+    char why[9000];
+    int rc;
+    snprintf(full, sizeof full, "cd '%s' && %s%s 2>&1", dir, bin, cmd + 8);
+    const char *out = rf_test_run(full, &rc);
+    rf_test_checks++;
+    if (!output_matches(expected, out, why, sizeof why))
+        rf_test_fail(md, line, "`%s`:\n    %s", cmd + 2, why);
 }
 
 /* Runs the examples of one markdown file; returns how many ran. */
@@ -90,23 +140,16 @@ static int check_file(const char *md, const char *bin, const char *dir)
         rf_test_fail(__FILE__, __LINE__, "cannot open %s", md);
         return 0;
     }
-    char line[8192], cmd[8192] = "", expected[1 << 15] = "";
-    int in_block = 0, have = 0, count = 0, lineno = 0, cmd_line = 0;
+    static char line[8192], cmd[1 << 14], expected[1 << 16];
+    int in_block = 0, have = 0, count = 0, lineno = 0, cmd_line = 0, continued = 0;
     for (;;) {
         char *got = fgets(line, sizeof line, f);
         if (got)
             lineno++;
         int fence = got && strncmp(line, "```", 3) == 0;
-        int start = got && in_block && strncmp(line, "$ refray", 8) == 0;
-        int blank = got && in_block && line[0] == '\n';
-        if (have && (!got || fence || start || blank)) {
-            char full[10000], why[9000];
-            int rc;
-            snprintf(full, sizeof full, "cd '%s' && %s%s 2>&1", dir, bin, cmd + 8);
-            const char *out = rf_test_run(full, &rc);
-            rf_test_checks++;
-            if (!output_matches(expected, out, why, sizeof why))
-                rf_test_fail(md, cmd_line, "`%s`:\n    %s", cmd + 2, why);
+        int dollar = got && in_block && strncmp(line, "$ ", 2) == 0 && !continued;
+        if (have && !continued && (!got || fence || dollar)) {
+            run_example(md, cmd_line, cmd, expected, bin, dir);
             count++;
             have = 0;
         }
@@ -117,10 +160,18 @@ static int check_file(const char *md, const char *bin, const char *dir)
             in_block = !in_block;
             continue;
         }
-        if (start) {
-            snprintf(cmd, sizeof cmd, "%s", line);
+        size_t len = strlen(line);
+        if (continued) { /* the command goes on */
+            continued = len > 0 && line[len - 1] == '\\';
+            if (have) {
+                size_t n = strlen(cmd);
+                snprintf(cmd + n, sizeof cmd - n, "%.*s", (int)(len - (size_t)continued), line);
+            }
+        } else if (dollar) {
+            continued = len > 0 && line[len - 1] == '\\';
+            have = strncmp(line, "$ refray", 8) == 0;
+            snprintf(cmd, sizeof cmd, "%.*s", (int)(len - (size_t)continued), line);
             expected[0] = 0;
-            have = 1;
             cmd_line = lineno;
         } else if (have) {
             size_t n = strlen(expected);
@@ -161,7 +212,7 @@ static void t_doc_examples(void)
     rf_test_run(sh, &rc);
 }
 
-/* The matcher itself: masking, "...", a changed number and a missing line. */
+/* The matcher itself: masking, "...", "…", a changed number, a missing line, a line too many. */
 static void t_doc_matcher(void)
 {
     char why[512];
@@ -169,9 +220,19 @@ static void t_doc_matcher(void)
                             "a 0.25 s, 12.5 Mrays/s, 8 threads (3.0 % idle)\n", why, sizeof why));
     RF_CHECK(!output_matches("trace 0.1 s, 7 spp\n", "trace 0.1 s, 8 spp\n", why, sizeof why));
     RF_CHECK(!output_matches("x 0.1\n", "x 0.2\n", why, sizeof why));
-    RF_CHECK(output_matches("one\n...\nfour\n", "one\ntwo\nthree\nfour\nfive\n", why, sizeof why));
+    RF_CHECK(output_matches("one\n...\nfour\n...\n", "one\ntwo\nthree\nfour\nfive\n", why, sizeof why));
+    RF_CHECK(!output_matches("one\n...\nfour\n", "one\ntwo\nthree\nfour\nfive\n", why, sizeof why));
     RF_CHECK(!output_matches("one\nfour\n", "one\ntwo\nfour\n", why, sizeof why));
     RF_CHECK(!output_matches("one\n...\nsix\n", "one\ntwo\n", why, sizeof why));
+    /* strict: the whole output, unless the example ends with "..." */
+    RF_CHECK(!output_matches("one\n", "one\ntwo\n", why, sizeof why));
+    RF_CHECK(output_matches("one\n...\n", "one\ntwo\n", why, sizeof why));
+    RF_CHECK(output_matches("one\n\ntwo\n", "one\n\ntwo\n\n", why, sizeof why));
+    RF_CHECK(!output_matches("one\ntwo\n", "one\n\ntwo\n", why, sizeof why));
+    /* "…" within a line: any text, the rest exact */
+    RF_CHECK(output_matches("written /tmp/\xe2\x80\xa6/a.exr at \xe2\x80\xa6\n", "written /tmp/x1y/a.exr at 12:00\n", why,
+                            sizeof why));
+    RF_CHECK(!output_matches("written /tmp/\xe2\x80\xa6/a.exr\n", "written /tmp/x1y/b.exr\n", why, sizeof why));
 }
 
 /* The README and the comparator's report (compare/report.sh and its notes) point only to files in
