@@ -235,11 +235,15 @@ static void t_doc_matcher(void)
     RF_CHECK(!output_matches("written /tmp/\xe2\x80\xa6/a.exr\n", "written /tmp/x1y/b.exr\n", why, sizeof why));
 }
 
-/* The README and the comparator's report (compare/report.sh and its notes) point only to files in
- * the repository: no "../" path, and every NAME.md they name exists (as given, or in docs/). */
+/* The README, the docs users read (all but the generated docs/api.md, whose header comments cite
+ * the design notes for developers) and the comparator's report (compare/report.sh and its notes)
+ * point only to files in the repository: no "../" path, and every NAME.md they name exists (as given, or in docs/). */
 static void t_doc_no_outside_refs(void)
 {
-    static const char *const files[] = {"README.md", "compare/report.sh", "compare/report-notes.txt"};
+    static const char *const files[] = {"README.md",          "compare/report.sh",   "compare/report-notes.txt",
+                                        "scenes/README.md",   "docs/color.md",       "docs/compare.md",
+                                        "docs/crosscheck.md", "docs/formulas.md",    "docs/performance.md",
+                                        "docs/scene-format.md", "docs/verify.md"};
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
         FILE *f = fopen(files[i], "r");
         char line[8192];

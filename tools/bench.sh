@@ -1,5 +1,5 @@
 #!/bin/sh
-# `make bench`: refray's run times against the anchors of shared/bench/SCENES.md, each section
+# `make bench`: refray's run times against the anchors of docs/bench-scenes.md, each section
 # with the command that reproduces it (docs/performance.md explains the numbers).
 #  1. mesh: the intersection core against Embree 3 on the very same rays (compare/mesh_bench.c);
 #     the 1.2 M-triangle bunny is made here when missing (CGAL Loop subdivision of Debian's
@@ -10,7 +10,7 @@
 #     POV-Ray translations in scenes/spd/pov/, depth 5, 1 spp), trace times, 1 and 2 threads.
 #  5. the specialised render kernels: each one's speed-up over the general kernel on scenes that
 #     do not need what it leaves out.
-#  6. run time against error on `soft` (SCENES.md section 3): `refray bench` for every sampling
+#  6. run time against error on `soft` (docs/bench-scenes.md section 3): `refray bench` for every sampling
 #     strategy, the anchors (Mitsuba 3 when pip can install it, POV-Ray) by tools/anchor_soft.py,
 #     side by side; the references are cached in scenes/bench/data/ (git-ignored); the plot goes
 #     to out/bench/soft_bench.png.
@@ -33,7 +33,7 @@ echo "refray bench on $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 
 
 # ---- 1. mesh against Embree ------------------------------------------------------------------
 echo
-echo "== 1. mesh: 1,206,528 triangles, 1024x768 primary + shadow rays, refray against Embree 3.13 (SCENES.md section 1)"
+echo "== 1. mesh: 1,206,528 triangles, 1024x768 primary + shadow rays, refray against Embree 3.13 (docs/bench-scenes.md section 1)"
 mesh=scenes/bench/data/bunny.obj
 cgal=/usr/share/doc/libcgal-demo/data.tar.gz
 if [ ! -f "$mesh" ] && [ -f "$cgal" ]; then
@@ -70,7 +70,7 @@ bench() {
 }
 
 echo
-echo "== 2. refray render: whitted (SCENES.md section 2) and the SPD scenes at 512x512, 1 spp"
+echo "== 2. refray render: whitted (docs/bench-scenes.md section 2) and the SPD scenes at 512x512, 1 spp"
 printf "%-28s %8s %8s %8s %8s %8s\n" "scene" "wall s" "load s" "build s" "trace s" "Mrays/s"
 for t in 1 2; do
     printf "%-28s %s\n" "whitted 640x480 1spp ${t}thr" "$(bench scenes/whitted.rf --threads $t)"
@@ -89,7 +89,7 @@ echo "  $bin render SCENE -o out.exr --threads T [--samples N]"
 # ---- 3. POV-Ray on whitted -----------------------------------------------------------------
 echo
 if command -v povray >/dev/null 2>&1; then
-    echo "== 3. POV-Ray 3.7 on the same whitted scene (scenes/bench/whitted.pov, from SCENES.md)"
+    echo "== 3. POV-Ray 3.7 on the same whitted scene (scenes/bench/whitted.pov, from docs/bench-scenes.md)"
     for t in 1 2; do
         : > "$tmp/wall"
         i=0
@@ -190,7 +190,7 @@ echo "reproduce: $bin render SCENE -o out.exr --threads 1 [--kernel general]; $b
 
 # ---- 6. run time against error on soft ---------------------------------------------------------
 echo
-echo "== 6. run time against error: soft 512x512 (SCENES.md section 3), time to relMSE 1e-3"
+echo "== 6. run time against error: soft 512x512 (docs/bench-scenes.md section 3), time to relMSE 1e-3"
 data=scenes/bench/data
 mkdir -p "$data" out/bench
 ref=$data/soft_ref.exr

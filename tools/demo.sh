@@ -1,6 +1,6 @@
 #!/bin/sh
 # `make demo`: renders the default scene (scenes/whitted.rf, the classic Whitted scene of
-# SCENES.md) to out/whitted.exr (linear) and out/whitted.png (gamma 2.2), then shows a few
+# docs/bench-scenes.md) to out/whitted.exr (linear) and out/whitted.png (gamma 2.2), then shows a few
 # formula calls.
 set -e
 bin=${1:-build/refray}
