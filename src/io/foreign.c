@@ -157,8 +157,9 @@ static int stb_eof(void *user)
 static const stbi_io_callbacks stb_io = {stb_read, stb_skip, stb_eof};
 
 /* stb_image (2022) loops forever on a run-length count of 0 in a Radiance scanline (later fixed
- * upstream): the counts of every RLE scanline are walked first, and a file with a zero count or
- * that ends inside a scanline is refused before stb_image sees it. Only the layout is checked;
+ * upstream; a read past the end gives 0 too): the counts of every RLE scanline are walked first,
+ * and a file with a zero count, a run past the scanline's end, or that ends inside a scanline is
+ * refused before stb_image sees it. Only the layout is checked;
  * stb_image decodes the values. */
 static const char *hdr_layout(const unsigned char *d, size_t n)
 {
@@ -171,10 +172,13 @@ static const char *hdr_layout(const unsigned char *d, size_t n)
         blank = nl == d + at;
         at = (size_t)(nl - d) + 1;
     }
-    char line[64];
+    /* the resolution line as stb_image reads it: up to 1023 characters, the rest of the line
+     * skipped (a longer line read only in part put the walk below off stb_image's place) */
+    char line[1024];
     size_t k = 0;
-    while (at < n && d[at] != '\n' && k + 1 < sizeof line)
-        line[k++] = (char)d[at++];
+    for (; at < n && d[at] != '\n'; at++)
+        if (k + 1 < sizeof line)
+            line[k++] = (char)d[at];
     line[k] = 0;
     at++;
     if (sscanf(line, "-Y %d +X %d", &h, &w) != 2 || w <= 0 || h <= 0)
@@ -190,12 +194,14 @@ static const char *hdr_layout(const unsigned char *d, size_t n)
                 if (at >= n)
                     return "truncated pixels";
                 int count = d[at++];
-                if (count == 0)
-                    return "a run-length count of 0";
                 if (count > 128)
                     count -= 128, at++;
                 else
                     at += (size_t)count;
+                if (count == 0)
+                    return "a run-length count of 0";
+                if (count > w - x) /* stb_image (2022) would write past its scanline */
+                    return "a run longer than the scanline";
                 x += count;
             }
     }
