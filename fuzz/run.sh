@@ -62,7 +62,11 @@ run_target() {
         left=$((start + SECS - $(date +%s)))
         [ "$left" -ge 1 ] && [ "$rounds" -lt 50 ] || break
         rounds=$((rounds + 1))
+        # -malloc_limit_mb: the largest image refray takes (2^28 RGBA float pixels) is one 4 GiB
+        # calloc that a header may legitimately ask for; the memory actually touched stays
+        # under -rss_limit_mb
         TMPDIR=$tmp RF_FUZZ_SCENES=scenes "$B/fuzz-$t" -max_total_time="$left" -timeout=10 -rss_limit_mb=2048 \
+            -malloc_limit_mb=4608 \
             -max_len="$(max_len "$t")" -dict="fuzz/dict/$t.dict" -artifact_prefix="$art/" \
             -print_final_stats=1 "$corpus" "$B/seeds/$t" > "$log.round" 2>&1
         rc=$?

@@ -15,6 +15,7 @@
 #include <ppm.h>
 #include <stb_image_write.h>
 #include <tiffio.h>
+#include <zlib.h>
 
 #include "refray/diff.h"
 #include "refray/grade.h"
@@ -206,6 +207,77 @@ static void t_grade_formats_corrupt(void)
             rf_test_fail(__FILE__, __LINE__, "%s: exit %d: %s", files[k], code, out);
         rf_test_checks++;
     }
+}
+
+/* A header that claims far more pixels than its file can hold is refused before anything is
+ * allocated for it, with the claim in the message (fuzzing found a 58-byte BMP that asked for
+ * 2.4 GB): a BMP, a raw PPM, a PNG and a JPEG whose headers say 16000 x 16000 (256 M pixels, under
+ * refray's limit of 2^28), each a few hundred bytes. */
+static void t_grade_formats_claims(void)
+{
+    char dir[] = "/tmp/refray-claims-XXXXXX", path[600], err[512];
+    unsigned char rgb[3 * 8 * 8] = {0};
+    if (!mkdtemp(dir)) {
+        rf_test_fail(__FILE__, __LINE__, "mkdtemp");
+        return;
+    }
+    for (int k = 0; k < 4; k++) {
+        static const char *const names[] = {"big.bmp", "big.ppm", "big.png", "big.jpg"};
+        snprintf(path, sizeof path, "%s/%s", dir, names[k]);
+        if (k == 1) {
+            FILE *f = fopen(path, "wb");
+            RF_CHECK(f != NULL);
+            if (!f)
+                continue;
+            fprintf(f, "P6\n16000 16000\n255\n");
+            fwrite(rgb, 1, sizeof rgb, f);
+            fclose(f);
+        } else {
+            /* an 8 x 8 image, then its size fields patched: BMP's at bytes 18 and 22 (32-bit
+             * little-endian), PNG's at 16 and 20 (big-endian, with the IHDR's CRC made anew),
+             * JPEG's in the SOF0 segment */
+            RfImage small;
+            RF_CHECK(rf_image_alloc(&small, 8, 8, 3) == RF_OK);
+            RfPngOptions po = {RF_PNG_SRGB, 2.2, 8, NULL};
+            int ok = k == 0 ? stbi_write_bmp(path, 8, 8, 3, rgb)
+                     : k == 3 ? stbi_write_jpg(path, 8, 8, 3, rgb, 90)
+                              : rf_png_write(path, &small, po, err, sizeof err) == RF_OK;
+            rf_image_free(&small);
+            RF_CHECK(ok);
+            FILE *f = fopen(path, "r+b");
+            unsigned char b[4096];
+            size_t n = f ? fread(b, 1, sizeof b, f) : 0;
+            RF_CHECK(n > 40);
+            if (!f || n <= 40)
+                continue;
+            if (k == 0) {
+                for (int i = 0; i < 4; i++)
+                    b[18 + i] = (unsigned char)(16000 >> (8 * i)), b[22 + i] = (unsigned char)(16000 >> (8 * i));
+            } else if (k == 2) {
+                b[16] = b[20] = 0, b[17] = b[21] = 0, b[18] = b[22] = 16000 >> 8, b[19] = b[23] = 16000 & 255;
+                uint32_t crc = (uint32_t)crc32(0, b + 12, 17); /* the IHDR's type and data */
+                for (int i = 0; i < 4; i++)
+                    b[29 + i] = (unsigned char)(crc >> (24 - 8 * i));
+            } else {
+                for (size_t i = 2; i + 8 < n; i++)
+                    if (b[i] == 0xff && b[i + 1] == 0xc0) { /* SOF0: length, precision, height, width */
+                        b[i + 5] = b[i + 7] = 16000 >> 8, b[i + 6] = b[i + 8] = 16000 & 255;
+                        break;
+                    }
+            }
+            rewind(f);
+            fwrite(b, 1, n, f);
+            fclose(f);
+        }
+        RfImage img;
+        RfPngOptions g = {RF_PNG_GAMMA, 2.2, 8, NULL};
+        RfStatus st = rf_image_read(path, g, &img, err, sizeof err);
+        if (st != RF_ERR_PARSE || img.data || !strstr(err, "claims 16000 x 16000 pixels, far more than its"))
+            rf_test_fail(__FILE__, __LINE__, "%s: status %d: %s", names[k], (int)st, err);
+        rf_test_checks++;
+        remove(path);
+    }
+    rmdir(dir);
 }
 
 /* ---- the heat map, the edge-tolerant mode and the hints, on a small synthetic scene ---- */
@@ -722,6 +794,7 @@ static void t_grade_cli_errors(void)
 const RfTest rf_tests_grade[] = {
     {"grade_formats_read", t_grade_formats_read},
     {"grade_formats_corrupt", t_grade_formats_corrupt},
+    {"grade_formats_claims", t_grade_formats_claims},
     {"grade_heatmap_scaled", t_grade_heatmap_scaled},
     {"grade_edge_tolerant_and_hints", t_grade_edge_tolerant_and_hints},
     {"grade_diff_edge_tolerant_cli", t_grade_diff_edge_tolerant_cli},

@@ -826,7 +826,7 @@ static void test_png_errors(void)
         put32(hdr + 41, crc32_png(hdr + 37, 4));
         RF_CHECK(write_bytes(path, hdr, sizeof hdr));
         RF_CHECK_EQ_INT(rf_image_read(path, gamma, &back, err, sizeof err), RF_ERR_PARSE);
-        if (!strstr(err, "size"))
+        if (!strstr(err, "PNG claims 1000000 x 1000000 pixels, far more than its 45 bytes can hold"))
             rf_test_fail(__FILE__, __LINE__, "unexpected message: %s", err);
         RF_CHECK(back.data == NULL);
     }

@@ -515,19 +515,14 @@ RfStatus rf_exr_read(const char *path, RfImage *img, char *err, size_t err_size)
 
     w = (int64_t)dw.max.x - dw.min.x + 1;
     h = (int64_t)dw.max.y - dw.min.y + 1;
-    {
-        /* no compression EXR has packs more than ~1000 floats into a byte (zlib's limit is about
-         * 1032:1): a header that claims far more pixels than the file can hold is refused before
-         * its image is allocated (a 263-byte file asked for 2 GiB; found by fuzzing) */
-        struct stat sb;
-        double claimed = (double)(w > 0 ? w : 0) * (double)(h > 0 ? h : 0) * (double)nc * sizeof(float);
-        if (fstat(io.fd, &sb) == 0 && claimed > 4096.0 * (double)sb.st_size + 64.0 * 1048576.0) {
-            st = rf_io_fail(RF_ERR_PARSE, err, err_size, path,
-                            "EXR claims %lldx%lld pixels, far more than its %lld bytes can hold", (long long)w,
-                            (long long)h, (long long)sb.st_size);
-            goto done;
-        }
-    }
+    /* no compression EXR has packs more than ~1000 floats into a byte (zlib's limit is about
+     * 1032:1): a header that claims far more pixels than the file can hold is refused before its
+     * image is allocated (a 263-byte file asked for 2 GiB; found by fuzzing) */
+    st = rf_io_check_claim(path, "EXR", (long long)w, (long long)h,
+                           (double)(w > 0 ? w : 0) * (double)(h > 0 ? h : 0) * (double)nc * sizeof(float), 4096.0,
+                           64.0 * 1048576.0, err, err_size);
+    if (st != RF_OK)
+        goto done;
     if (w <= 0 || h <= 0 || w > INT32_MAX || h > INT32_MAX ||
         rf_image_alloc(img, (int)w, (int)h, nc) == RF_ERR_DOMAIN) {
         st = rf_io_fail(RF_ERR_PARSE, err, err_size, path, "unsupported EXR data window %lldx%lld", (long long)w,

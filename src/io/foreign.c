@@ -69,6 +69,7 @@ RfStatus rf_pnm_read(const char *path, RfPngOptions decode, RfImage *img, int *e
         return st;
     xel *volatile row = NULL;
     volatile RfStatus failed = RF_ERR_PARSE;
+    volatile int reported = 0; /* err already says why */
     jmp_buf jb, *old = NULL;
     pm_init("refray", 0);
     pm_setusererrormsgfn(pnm_quiet);
@@ -82,6 +83,8 @@ RfStatus rf_pnm_read(const char *path, RfPngOptions decode, RfImage *img, int *e
             pnm_freerow(row);
         rf_image_free(img);
         fclose(fp);
+        if (reported)
+            return failed;
         return failed == RF_ERR_PARSE ? rf_io_fail(RF_ERR_PARSE, err, err_size, path, "corrupt or truncated PNM (PPM/PGM/PBM) file")
                                       : alloc_failed(failed, path, 0, 0, err, err_size);
     }
@@ -89,6 +92,12 @@ RfStatus rf_pnm_read(const char *path, RfPngOptions decode, RfImage *img, int *e
     xelval maxval;
     pnm_readpnminit(fp, &cols, &rows, &maxval, &format);
     int samples = PNM_FORMAT_TYPE(format) == PPM_TYPE ? 3 : 1;
+    /* at least a bit a pixel (P4); refused here, the message kept for the jump below */
+    st = rf_io_check_claim(path, "PNM", cols, rows, (double)cols * rows / 8.0, 1.0, 4096.0, err, err_size);
+    if (st != RF_OK) {
+        failed = st, reported = 1;
+        pm_error("claim");
+    }
     st = rf_image_alloc(img, cols, rows, samples);
     if (st != RF_OK) {
         failed = st;
@@ -250,7 +259,16 @@ RfStatus rf_stb_read(const char *path, RfPngOptions decode, RfImage *img, int *e
     if (!bad && hdr)
         bad = hdr_layout(bytes, size);
     int want = comp == 2 ? 4 : 0, samples = want ? want : comp;
-    /* refused before stb_image allocates anything for a size from a corrupt header */
+    /* refused before stb_image allocates anything for a size from a corrupt header; no format
+     * stb_image reads here packs more than 512 pixels into a byte (a grey progressive JPEG whose
+     * blocks have only their DC code, 1 bit for 64 pixels) */
+    const char *format = size >= 2 && bytes[0] == 0xff ? "JPEG" : size >= 2 && bytes[0] == 'B' ? "BMP"
+                       : size >= 2 && bytes[0] == '#'                    ? "HDR"
+                                                                         : "TGA";
+    if (!bad && rf_io_check_claim(path, format, w, h, (double)w * h, 512.0, 4096.0, err, err_size) != RF_OK) {
+        free(bytes);
+        return RF_ERR_PARSE;
+    }
     st = bad ? RF_ERR_PARSE : rf_image_alloc(img, w, h, channels_for(samples));
     if (st != RF_OK) {
         free(bytes);
@@ -405,6 +423,17 @@ RfStatus rf_tiff_read(const char *path, RfPngOptions decode, RfImage *img, int *
     TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLEFORMAT, &format);
     TIFFGetFieldDefaulted(t, TIFFTAG_PLANARCONFIG, &planar);
     TIFFGetField(t, TIFFTAG_PHOTOMETRIC, &photo);
+    uint16_t compression = COMPRESSION_NONE;
+    TIFFGetFieldDefaulted(t, TIFFTAG_COMPRESSION, &compression);
+    /* LZW packs at most ~2730 bytes into one, Deflate ~1032; the fax codes are left to libtiff
+     * (a blank row takes a bit, whatever its width) */
+    int fax = compression == COMPRESSION_CCITTRLE || compression == COMPRESSION_CCITTFAX3 ||
+              compression == COMPRESSION_CCITTFAX4 || compression == COMPRESSION_CCITTRLEW;
+    if (!fax && rf_io_check_claim(path, "TIFF", w, h, (double)w * h * samples * bits / 8.0, 4096.0, 65536.0, err,
+                                  err_size) != RF_OK) {
+        TIFFClose(t);
+        return RF_ERR_PARSE;
+    }
     int plain = tiff_plain(t, photo, samples, bits, format, planar);
     if (!plain && format != SAMPLEFORMAT_UINT) {
         TIFFClose(t);

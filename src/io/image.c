@@ -87,6 +87,16 @@ RfStatus rf_io_read_start(RfImage *img, const char *path, char *err, size_t err_
     return RF_OK;
 }
 
+RfStatus rf_io_check_claim(const char *path, const char *format, long long width, long long height,
+                           double decoded_bytes, double per_byte, double slack_bytes, char *err, size_t err_size)
+{
+    struct stat sb;
+    if (stat(path, &sb) != 0 || decoded_bytes <= per_byte * (double)sb.st_size + slack_bytes)
+        return RF_OK;
+    return rf_io_fail(RF_ERR_PARSE, err, err_size, path, "%s claims %lld x %lld pixels, far more than its %lld bytes can hold",
+                      format, width, height, (long long)sb.st_size);
+}
+
 RfStatus rf_io_check_image(const RfImage *img, const char *path, char *err, size_t err_size)
 {
     if (!path)

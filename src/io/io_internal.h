@@ -20,6 +20,15 @@ RfStatus rf_io_fail_errno(RfStatus status, char *err, size_t err_size, const cha
 /* The start of every reader: img must exist (it is emptied) and path must be given. */
 RfStatus rf_io_read_start(RfImage *img, const char *path, char *err, size_t err_size);
 
+/* A header's image size checked against its file before anything is allocated for it (fuzzing
+ * found files of 58 to 263 bytes that asked for 2 GiB and more): a format that packs at most
+ * per_byte decoded bytes into one byte of the file cannot hold decoded_bytes in fewer than
+ * decoded_bytes / per_byte of them; slack_bytes covers headers and tiny images. RF_ERR_PARSE
+ * with "FORMAT claims W x H pixels, far more than its N bytes can hold", else RF_OK (also when
+ * the file cannot be stat'ed: the reader reports that). */
+RfStatus rf_io_check_claim(const char *path, const char *format, long long width, long long height,
+                           double decoded_bytes, double per_byte, double slack_bytes, char *err, size_t err_size);
+
 /* Validates width/height/channels/data of an image to be written. */
 RfStatus rf_io_check_image(const RfImage *img, const char *path, char *err, size_t err_size);
 

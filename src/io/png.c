@@ -203,6 +203,17 @@ static RfStatus png_read_impl(const char *path, RfPngOptions decode, RfImage *im
     png_read_info(png, info);
     color_type = png_get_color_type(png, info);
     depth = png_get_bit_depth(png, info);
+    /* the filtered rows come out of zlib, at most ~1032 bytes from one */
+    st = rf_io_check_claim(path, "PNG", (long long)png_get_image_width(png, info),
+                           (long long)png_get_image_height(png, info),
+                           (double)png_get_image_width(png, info) * png_get_image_height(png, info) *
+                               png_get_channels(png, info) * depth / 8.0,
+                           1032.0, 65536.0, err, err_size);
+    if (st != RF_OK) {
+        png_destroy_read_struct(&png, &info, NULL);
+        fclose(fp);
+        return st;
+    }
     /* Raw codes in 8 or 16 bits as grey, RGB or RGBA; no gamma handling by libpng: the curve
      * is the caller's choice. */
     if (color_type == PNG_COLOR_TYPE_PALETTE)

@@ -36,6 +36,9 @@ static RfImageFile sniff(const unsigned char *s, size_t n, const char *path)
         return RF_FILE_BMP;
     if (n >= 2 && memcmp(s, "#?", 2) == 0) /* "#?RADIANCE" or "#?RGBE" */
         return RF_FILE_HDR;
+    /* stb_image would take a GIF, PSD or Softimage PIC named .tga for what it is */
+    if (n >= 4 && (memcmp(s, "GIF8", 4) == 0 || memcmp(s, "8BPS", 4) == 0 || memcmp(s, "\x53\x80\xf6\x34", 4) == 0))
+        return RF_FILE_UNKNOWN;
     return has_suffix(path, ".tga") ? RF_FILE_TGA : RF_FILE_UNKNOWN;
 }
 
