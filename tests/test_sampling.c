@@ -522,6 +522,57 @@ static void t_sobol_elementary_intervals(void)
     RF_CHECK(a[0] == b[0] && a[1] == b[1]);
 }
 
+/* Sobol samples as the first implementation computed them (the second component by a loop over
+ * the set bits of the index; now the superset-sum transform, checked against that loop over all
+ * 2^32 indices once): the same values to the last bit, so the sobol renders are unchanged. */
+static void t_sobol_recorded_values(void)
+{
+    static const struct {
+        uint64_t pixel;
+        uint32_t k, dim;
+        double x, y;
+    } rec[] = {
+    {0ull, 0, 0, 0x1.ba72216p-1, 0x1.8758e91p-1},
+    {0ull, 0, 5, 0x1.131db472p-1, 0x1.94b16632p-1},
+    {0ull, 13, 0, 0x1.9e9ab334p-1, 0x1.3d9e34cp-2},
+    {0ull, 13, 5, 0x1.2d07311p-3, 0x1.763fcf12p-1},
+    {0ull, 26, 0, 0x1.5f8498p-8, 0x1.6687c43ap-1},
+    {0ull, 26, 5, 0x1.b9270092p-1, 0x1.9f0c3274p-2},
+    {0ull, 39, 0, 0x1.72186c8p-6, 0x1.f8278c38p-3},
+    {0ull, 39, 5, 0x1.5191298ap-1, 0x1.a45826dap-1},
+    {0ull, 52, 0, 0x1.63e585b6p-1, 0x1.9d00d98ap-1},
+    {0ull, 52, 5, 0x1.d28974f8p-1, 0x1.c57a6ef8p-2},
+    {12345ull, 0, 0, 0x1.e879db4ap-1, 0x1.6000e5e8p-3},
+    {12345ull, 0, 5, 0x1.f52ef6ep-5, 0x1.ff5265ap-3},
+    {12345ull, 13, 0, 0x1.3618658cp-2, 0x1.1a49815p-1},
+    {12345ull, 13, 5, 0x1.0a7bcd88p-1, 0x1.4b960e22p-1},
+    {12345ull, 26, 0, 0x1.99afd078p-2, 0x1.0a86aa2p-3},
+    {12345ull, 26, 5, 0x1.58b8dc3p-1, 0x1.ba949a38p-2},
+    {12345ull, 39, 0, 0x1.4a65f382p-1, 0x1.dd713464p-2},
+    {12345ull, 39, 5, 0x1.1518a8p-6, 0x1.21ad731p-2},
+    {12345ull, 52, 0, 0x1.6a5d3cecp-2, 0x1.5505e4b4p-2},
+    {12345ull, 52, 5, 0x1.11f684ap-5, 0x1.cb814e9cp-1},
+    {4294967295ull, 0, 0, 0x1.b4aba468p-2, 0x1.86aa43d8p-3},
+    {4294967295ull, 0, 5, 0x1.5daecaap-2, 0x1.f773385ap-1},
+    {4294967295ull, 13, 0, 0x1.5e7b766p-4, 0x1.5e320f56p-1},
+    {4294967295ull, 13, 5, 0x1.6f22e2p-8, 0x1.2dc7b464p-2},
+    {4294967295ull, 26, 0, 0x1.f03202a4p-1, 0x1.3966f8ap-4},
+    {4294967295ull, 26, 5, 0x1.13158fbep-1, 0x1.649e0426p-1},
+    {4294967295ull, 39, 0, 0x1.1bee1d06p-1, 0x1.ce8da48p-4},
+    {4294967295ull, 39, 5, 0x1.044a003p-1, 0x1.c3040faap-1},
+    {4294967295ull, 52, 0, 0x1.fcbc21cp-3, 0x1.d28f31cp-3},
+    {4294967295ull, 52, 5, 0x1.58155e3p-1, 0x1.b619b6dap-1},
+    };
+    for (size_t i = 0; i < sizeof rec / sizeof rec[0]; i++) {
+        double o[2];
+        rf_sample_2d(RF_SAMPLER_SOBOL, rec[i].k, 64, rec[i].pixel, rec[i].dim, 7, o);
+        if (o[0] != rec[i].x || o[1] != rec[i].y)
+            rf_test_fail(__FILE__, __LINE__, "sample %u of pixel %llu, dimension %u: (%a, %a), recorded (%a, %a)",
+                         rec[i].k, (unsigned long long)rec[i].pixel, rec[i].dim, o[0], o[1], rec[i].x, rec[i].y);
+        rf_test_checks++;
+    }
+}
+
 /* Two dimensions of one Sobol sample must not be paired by their index: without the index
  * shuffle, the 4-strata of both 1D coordinates are functions of the same two bits of k, so the
  * 16 pairs of a pixel fill exactly 4 of the 4 x 4 cells of the (dimension 1, dimension 2) square.
@@ -873,6 +924,7 @@ const RfTest rf_tests_sampling[] = {
     {"sampling_chi2_rejects_wrong_pdf", t_chi2_rejects_wrong_pdf},
     {"sampling_stratified_cells", t_stratified_cells},
     {"sampling_sobol_elementary_intervals", t_sobol_elementary_intervals},
+    {"sampling_sobol_recorded_values", t_sobol_recorded_values},
     {"sampling_sobol_dimensions_decorrelated", t_sobol_dimensions_decorrelated},
     {"sampling_uniform_grid", t_uniform_grid},
     {"sampling_samples_in_unit_square", t_samples_in_unit_square},
