@@ -46,6 +46,21 @@ int rf_sampler_parse(const char *name);
  * uniform and stratified patterns take k modulo n. */
 void rf_sample_2d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_t dimension, uint64_t seed,
                   double out[2]);
+/* What rf_sample_2d hashes out of (pixel, dimension, seed) before it looks at the sample: a
+ * caller that draws several samples of one pixel and dimension (the shadow rays of an area
+ * light) computes it once with rf_sample_keys and draws with rf_sample_2d_keyed, the same values
+ * as rf_sample_2d's. */
+typedef struct {
+    RfSampler sampler;
+    uint32_t dimension;
+    uint64_t pixel, seed;
+    uint64_t base;  /* the pixel's key */
+    uint64_t order; /* uniform, stratified: the strata's shuffle */
+    uint64_t sobol_index, sobol_x, sobol_y;
+} RfSampleKeys;
+RfSampleKeys rf_sample_keys(RfSampler s, uint64_t pixel, uint32_t dimension, uint64_t seed);
+void rf_sample_2d_keyed(const RfSampleKeys *keys, uint32_t k, uint32_t n, double out[2]);
+
 /* Sample k of n in [0,1): uniform (k + 0.5) / n, random, stratified (one per stratum
  * [j/n, (j+1)/n), strata shuffled except in dimension 0), sobol (the scrambled van der Corput
  * sequence: the first coordinate of rf_sample_2d's point). */

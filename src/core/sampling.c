@@ -34,11 +34,6 @@ static uint64_t rf_key_tag(uint64_t base, uint32_t dimension, uint32_t tag)
     return rf_mix64(base ^ (((uint64_t)tag << 32) | dimension));
 }
 
-static uint64_t rf_key(uint64_t pixel, uint32_t dimension, uint64_t seed, uint32_t tag)
-{
-    return rf_key_tag(rf_key_base(pixel, seed), dimension, tag);
-}
-
 /* A keyed bijection of [0, n) for any n, cheap enough to run per sample: on the smallest
  * power of two >= n, four rounds of "xor a round key, multiply by an odd round key, xorshift"
  * (each a bijection of the b-bit words, so the chain is one), repeated while the result lies
@@ -137,16 +132,6 @@ static inline uint32_t rf_sobol_y_reversed(uint32_t i)
     return i;
 }
 
-/* The index of sample k in the Sobol sequence: the same nested scramble applied to the integer
- * k (Burley 2020 §4, "shuffling"). Bit j of the result is bit j of k flipped by a function of
- * the bits above j, so each aligned block [a 2^m, (a+1) 2^m) of samples is an aligned block of
- * the sequence, in another order: the shuffled sequence is again a (0,2)-sequence, and any
- * prefix is a union of nets. */
-static uint32_t rf_sobol_index(uint32_t k, uint64_t base, uint32_t dimension)
-{
-    return rf_owen_scramble(k, rf_key_tag(base, dimension, RF_KEY_SOBOL_INDEX));
-}
-
 static const double rf_two_m32 = 1.0 / 4294967296.0;
 
 /* floor(sqrt(n)), exactly. */
@@ -182,28 +167,46 @@ int rf_sampler_parse(const char *name)
     return -1;
 }
 
-/* Stratified: the cell of sample k. Dimension 0 (the pixel position) keeps the order k, so that
- * it is the renderer's historical pattern; other dimensions shuffle it, so that the strata of two
- * dimensions are not paired the same way in every pixel. */
-static uint32_t rf_cell(uint32_t k, uint32_t n, uint64_t pixel, uint32_t dimension, uint64_t seed)
+RfSampleKeys rf_sample_keys(RfSampler s, uint64_t pixel, uint32_t dimension, uint64_t seed)
 {
-    return dimension == 0 ? k : rf_permute(k, n, rf_key(pixel, dimension, seed, RF_KEY_ORDER));
+    RfSampleKeys K;
+    memset(&K, 0, sizeof K);
+    K.sampler = s, K.pixel = pixel, K.dimension = dimension, K.seed = seed;
+    if (s == RF_SAMPLER_RANDOM || s >= RF_SAMPLER_COUNT)
+        return K; /* the counter-based generator hashes (pixel, k, dimension) per value */
+    K.base = rf_key_base(pixel, seed);
+    if (s == RF_SAMPLER_SOBOL) {
+        K.sobol_index = rf_key_tag(K.base, dimension, RF_KEY_SOBOL_INDEX);
+        K.sobol_x = rf_key_tag(K.base, dimension, RF_KEY_SOBOL_X);
+        K.sobol_y = rf_key_tag(K.base, dimension, RF_KEY_SOBOL_Y);
+    } else if (dimension != 0) {
+        K.order = rf_key_tag(K.base, dimension, RF_KEY_ORDER);
+    }
+    return K;
 }
 
-void rf_sample_2d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_t dimension, uint64_t seed,
-                  double out[2])
+/* Stratified and uniform: the cell of sample k. Dimension 0 (the pixel position) keeps the order
+ * k, so that it is the renderer's historical pattern; other dimensions shuffle it, so that the
+ * strata of two dimensions are not paired the same way in every pixel. */
+static uint32_t rf_cell_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n)
 {
-    uint32_t du = 2 * dimension, dv = 2 * dimension + 1;
+    return K->dimension == 0 ? k : rf_permute(k, n, K->order);
+}
+
+void rf_sample_2d_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n, double out[2])
+{
+    const uint64_t pixel = K->pixel, seed = K->seed;
+    uint32_t du = 2 * K->dimension, dv = 2 * K->dimension + 1;
     if (n == 0)
         n = 1;
-    switch (s) {
+    switch (K->sampler) {
     case RF_SAMPLER_UNIFORM: {
         /* the grid's cell centres; dimensions other than the pixel position take them in a
          * shuffled order, as the stratified sampler does, or sample k would put its lens and
          * light points on the same cell as its pixel offset in every pixel (a bias that never
          * averages out) */
         uint32_t a = rf_isqrt(n), b = n / a + (n % a != 0);
-        uint32_t c = rf_cell(k % n, n, pixel, dimension, seed);
+        uint32_t c = rf_cell_keyed(K, k % n, n);
         out[0] = ((double)(c % a) + 0.5) / (double)a;
         out[1] = ((double)(c / a) + 0.5) / (double)b;
         return;
@@ -211,7 +214,7 @@ void rf_sample_2d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_t 
     case RF_SAMPLER_STRATIFIED: {
         k %= n;
         double u = rf_rng_uniform(pixel, k, du, seed), v = rf_rng_uniform(pixel, k, dv, seed);
-        uint32_t c = rf_cell(k, n, pixel, dimension, seed), side = rf_isqrt(n);
+        uint32_t c = rf_cell_keyed(K, k, n), side = rf_isqrt(n);
         if (side * side == n) {
             /* the operations of the renderer's k x k jitter, in the same order; the clamp only
              * acts when (side - 1) + u rounds up to side, which the renderer let through as 1.0 */
@@ -219,18 +222,21 @@ void rf_sample_2d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_t 
             out[1] = rf_below_one(((double)(c / side) + v) / (double)side);
         } else {
             /* Latin hypercube: column c, row a second permutation of c */
-            uint32_t r = rf_permute(c, n, rf_key(pixel, dimension, seed, RF_KEY_LHS_Y));
+            uint32_t r = rf_permute(c, n, rf_key_tag(K->base, K->dimension, RF_KEY_LHS_Y));
             out[0] = rf_below_one(((double)c + u) / (double)n);
             out[1] = rf_below_one(((double)r + v) / (double)n);
         }
         return;
     }
     case RF_SAMPLER_SOBOL: {
-        uint64_t base = rf_key_base(pixel, seed);
-        uint32_t i = rf_sobol_index(k, base, dimension);
+        /* the index of sample k in the sequence: the nested scramble applied to the integer k
+         * (Burley 2020 §4, "shuffling"). Bit j of i is bit j of k flipped by a function of the
+         * bits above j, so each aligned block [a 2^m, (a+1) 2^m) of samples is an aligned block of
+         * the sequence in another order: again a (0,2)-sequence, any prefix a union of nets. */
+        uint32_t i = rf_owen_scramble(k, K->sobol_index);
         /* the van der Corput component is i reversed, so its scramble needs one reversal */
-        uint32_t x = rf_owen_scramble_reversed(i, rf_key_tag(base, dimension, RF_KEY_SOBOL_X));
-        uint32_t y = rf_owen_scramble_reversed(rf_sobol_y_reversed(i), rf_key_tag(base, dimension, RF_KEY_SOBOL_Y));
+        uint32_t x = rf_owen_scramble_reversed(i, K->sobol_x);
+        uint32_t y = rf_owen_scramble_reversed(rf_sobol_y_reversed(i), K->sobol_y);
         out[0] = (double)x * rf_two_m32;
         out[1] = (double)y * rf_two_m32;
         return;
@@ -243,31 +249,33 @@ void rf_sample_2d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_t 
     out[1] = rf_rng_uniform(pixel, k, dv, seed);
 }
 
+void rf_sample_2d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_t dimension, uint64_t seed,
+                  double out[2])
+{
+    RfSampleKeys K = rf_sample_keys(s, pixel, dimension, seed);
+    rf_sample_2d_keyed(&K, k, n, out);
+}
+
 double rf_sample_1d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_t dimension, uint64_t seed)
 {
-    uint32_t du = 2 * dimension;
+    RfSampleKeys K = rf_sample_keys(s, pixel, dimension, seed);
     if (n == 0)
         n = 1;
     switch (s) {
     case RF_SAMPLER_UNIFORM:
-        return ((double)rf_cell(k % n, n, pixel, dimension, seed) + 0.5) / (double)n;
+        return ((double)rf_cell_keyed(&K, k % n, n) + 0.5) / (double)n;
     case RF_SAMPLER_STRATIFIED: {
         k %= n;
-        double u = rf_rng_uniform(pixel, k, du, seed);
-        return rf_below_one(((double)rf_cell(k, n, pixel, dimension, seed) + u) / (double)n);
+        double u = rf_rng_uniform(pixel, k, 2 * dimension, seed);
+        return rf_below_one(((double)rf_cell_keyed(&K, k, n) + u) / (double)n);
     }
-    case RF_SAMPLER_SOBOL: {
-        /* the first component of the 2D sample: the scrambled van der Corput sequence */
-        uint64_t base = rf_key_base(pixel, seed);
-        uint32_t i = rf_sobol_index(k, base, dimension);
-        uint32_t x = rf_owen_scramble_reversed(i, rf_key_tag(base, dimension, RF_KEY_SOBOL_X));
-        return (double)x * rf_two_m32;
-    }
+    case RF_SAMPLER_SOBOL: /* the first component of the 2D sample: the scrambled van der Corput sequence */
+        return (double)rf_owen_scramble_reversed(rf_owen_scramble(k, K.sobol_index), K.sobol_x) * rf_two_m32;
     case RF_SAMPLER_RANDOM:
     case RF_SAMPLER_COUNT:
         break;
     }
-    return rf_rng_uniform(pixel, k, du, seed);
+    return rf_rng_uniform(pixel, k, 2 * dimension, seed);
 }
 
 /* ---- warps --------------------------------------------------------------------------------- */

@@ -95,15 +95,14 @@ static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHi
 }
 
 /* §3.10 soft shadows: sample j of an area light seen from the hit (stratified over the light
- * with the camera sample's index, rf_kernel_dim). Fills ls as a point light at the sampled point
+ * with the camera sample's index; keys: the light's sampling dimension, rf_kernel_dim). Fills ls as a point light at the sampled point
  * (an element dA seen under theta_l acts as intensity Le cos(theta_l) dA, scene.h), already
  * divided by the number of samples; 0 when the sample sees the light's back or lies inside. */
-static inline int RF_KNAME(area_sample)(const RfKernelJob *job, const RfKernelLight *l, int li, RfVec3 x, int j,
-                                        int depth, const RfPathSample *ps, RfLightSample *ls)
+static inline int RF_KNAME(area_sample)(const RfKernelLight *l, const RfSampleKeys *keys, RfVec3 x, int j,
+                                        const RfPathSample *ps, RfLightSample *ls)
 {
     double uv[2];
-    rf_sample_2d(ps->sampler, ps->k * (uint32_t)l->samples + (uint32_t)j, ps->n * (uint32_t)l->samples,
-                 ps->pixel, rf_kernel_dim(depth, 2 + li), job->seed, uv);
+    rf_sample_2d_keyed(keys, ps->k * (uint32_t)l->samples + (uint32_t)j, ps->n * (uint32_t)l->samples, uv);
     if (l->kind == RF_LIGHT_SPHERE) {
         /* uniform in the cone of directions the sphere covers (solid-angle sampling) */
         RfVec3 to = rf_vec3_sub(l->position, x);
@@ -231,8 +230,9 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
         RfLightSample ls;
         RfRgb term;
         if (RF_ON(RF_K_AREA) && l->samples > 0) { /* an area light: its samples */
+            RfSampleKeys keys = rf_sample_keys(ps->sampler, ps->pixel, rf_kernel_dim(depth, 2 + li), job->seed);
             for (int j = 0; j < l->samples; j++)
-                if (RF_KNAME(area_sample)(job, l, li, h.point, j, depth, ps, &ls) &&
+                if (RF_KNAME(area_sample)(l, &keys, h.point, j, ps, &ls) &&
                     RF_KNAME(light_term)(job, &h, m, n, v, &ls, st, &shadow_cache[li], ps, li, j, depth, &term))
                     color = rf_rgb_add(color, term);
             continue;
