@@ -137,9 +137,10 @@ typedef int (*RfBvhItemFn)(void *ctx, uint64_t key, const RfBvhRay *ray, double 
 
 /* The nearest hit so far: t and key. Start with key 0 for "none" (t is then an exclusive limit)
  * or with a hit's key (a later hit at the same t must have a lower key). When a triangle or a
- * sphere of the BVH is the nearest: tri or sphere (the other NULL), for a sphere its roots and
- * far (the far root: rf_sphere_root_normal), and the user bits; both NULL for the caller's
- * items. */
+ * sphere of the BVH is the nearest: tri or sphere (the other NULL), for a triangle its edge
+ * functions (rf_watertight_edges: the barycentric coordinates are edges[0..2] / edges[3]) and,
+ * when its side was checked, its unit normal (has_normal), for a sphere its roots and far (the
+ * far root: rf_sphere_root_normal), and the user bits; both NULL for the caller's items. */
 typedef struct {
     double t;
     uint64_t key;
@@ -147,6 +148,9 @@ typedef struct {
     const RfSphere *sphere;
     int far;
     RfSphereRoots roots; /* the sphere's, for rf_sphere_root_normal */
+    double edges[4];     /* the triangle's U, V, W, det */
+    int has_normal;
+    RfVec3 normal;       /* rf_triangle_unit_normal of tri, when has_normal */
     uint32_t user;
 } RfBvhHit;
 

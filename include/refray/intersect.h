@@ -94,6 +94,10 @@ int rf_intersect_triangle_watertight(const RfWatertightRay *wr, RfTriangle tri, 
  * 1 and *t when the ray's line meets the triangle. rf_intersect_triangle_watertight gives the
  * same t, bit for bit. */
 int rf_watertight_t(const RfWatertightRay *wr, const RfTriangle *tri, double *t);
+/* rf_watertight_t keeping the edge functions U, V, W and det = U + V + W in e: the hit's
+ * barycentric coordinates are e[0..2] / e[3], rf_intersect_triangle_watertight's bit for bit
+ * (the BVH keeps them for its winner instead of testing it again). */
+int rf_watertight_edges(const RfWatertightRay *wr, const RfTriangle *tri, double *t, double e[4]);
 /* normalise((p2 - p1) x (p3 - p1)): the normal every triangle hit reports. */
 RfVec3 rf_triangle_unit_normal(const RfTriangle *tri);
 

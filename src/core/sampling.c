@@ -169,17 +169,17 @@ int rf_sampler_parse(const char *name)
 
 RfSampleKeys rf_sample_keys(RfSampler s, uint64_t pixel, uint32_t dimension, uint64_t seed)
 {
-    RfSampleKeys K;
-    memset(&K, 0, sizeof K);
-    K.sampler = s, K.pixel = pixel, K.dimension = dimension, K.seed = seed;
-    if (s == RF_SAMPLER_RANDOM || s >= RF_SAMPLER_COUNT)
-        return K; /* the counter-based generator hashes (pixel, k, dimension) per value */
+    RfSampleKeys K = {s, dimension, pixel, seed, 0, 0, 0, 0, 0};
+    /* random: the counter-based generator hashes (pixel, k, dimension) per value; the pixel
+     * position (dimension 0) keeps its strata in order */
+    if (s == RF_SAMPLER_RANDOM || s >= RF_SAMPLER_COUNT || (s != RF_SAMPLER_SOBOL && dimension == 0))
+        return K;
     K.base = rf_key_base(pixel, seed);
     if (s == RF_SAMPLER_SOBOL) {
         K.sobol_index = rf_key_tag(K.base, dimension, RF_KEY_SOBOL_INDEX);
         K.sobol_x = rf_key_tag(K.base, dimension, RF_KEY_SOBOL_X);
         K.sobol_y = rf_key_tag(K.base, dimension, RF_KEY_SOBOL_Y);
-    } else if (dimension != 0) {
+    } else {
         K.order = rf_key_tag(K.base, dimension, RF_KEY_ORDER);
     }
     return K;
@@ -222,7 +222,8 @@ void rf_sample_2d_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n, double ou
             out[1] = rf_below_one(((double)(c / side) + v) / (double)side);
         } else {
             /* Latin hypercube: column c, row a second permutation of c */
-            uint32_t r = rf_permute(c, n, rf_key_tag(K->base, K->dimension, RF_KEY_LHS_Y));
+            uint64_t base = K->dimension ? K->base : rf_key_base(pixel, seed); /* rf_sample_keys' rule */
+            uint32_t r = rf_permute(c, n, rf_key_tag(base, K->dimension, RF_KEY_LHS_Y));
             out[0] = rf_below_one(((double)c + u) / (double)n);
             out[1] = rf_below_one(((double)r + v) / (double)n);
         }

@@ -249,8 +249,8 @@ static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double 
             int k = __builtin_ctz(keep);
             keep &= keep - 1;
             uint64_t key = blk->key[k];
-            double t;
-            if (key == 0 || !rf_watertight_t(&r->wr, &blk->tri[k], &t) || !(t >= t_min))
+            double t, e[4];
+            if (key == 0 || !rf_watertight_edges(&r->wr, &blk->tri[k], &t, e) || !(t >= t_min))
                 continue;
             if (mode == ANY) {
                 if (t < best->t) {
@@ -262,8 +262,10 @@ static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double 
             if (!(t < best->t || (t == best->t && key < best->key)))
                 continue;
             unsigned sides = blk->user[k] >> 30;
-            if (mode == NEAREST && sides != RF_BVH_SEE_BOTH) {
-                RfVec3 nrm = rf_triangle_unit_normal(&blk->tri[k]);
+            int sided = mode == NEAREST && sides != RF_BVH_SEE_BOTH;
+            RfVec3 nrm = {0, 0, 0};
+            if (sided) {
+                nrm = rf_triangle_unit_normal(&blk->tri[k]);
                 int front = rf_vec3_dot(r->ray.dir, nrm) < 0.0;
                 if (front != (sides == RF_BVH_SEE_FRONT))
                     continue;
@@ -272,6 +274,9 @@ static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double 
             best->key = key;
             best->tri = &blk->tri[k];
             best->sphere = NULL;
+            memcpy(best->edges, e, sizeof e);
+            best->has_normal = sided;
+            best->normal = nrm;
             best->user = blk->user[k] & USER_BITS;
             improved = 1;
         }
@@ -436,9 +441,11 @@ int rf_bvh_nearest_any_side(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvh
 int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,
                     RfBvhItemFn fn, void *ctx, uint64_t *key)
 {
-    RfBvhHit lim;
-    memset(&lim, 0, sizeof lim);
+    RfBvhHit lim; /* an any-hit walk reads t and writes key alone */
     lim.t = t_max;
+    lim.key = 0;
+    lim.tri = NULL;
+    lim.sphere = NULL;
     int hit = traverse(bvh, ray, t_min, &lim, fn, ctx, ANY);
     if (hit && key)
         *key = lim.key;

@@ -339,6 +339,11 @@ int rf_watertight_t(const RfWatertightRay *w, const RfTriangle *tri, double *t)
     return watertight(w, tri, e, &det, t);
 }
 
+int rf_watertight_edges(const RfWatertightRay *w, const RfTriangle *tri, double *t, double e[4])
+{
+    return watertight(w, tri, e, &e[3], t);
+}
+
 RfVec3 rf_triangle_unit_normal(const RfTriangle *tri) { return triangle_unit_normal(*tri); }
 
 /* l1, l2, l3 = U, V, W / det. */
