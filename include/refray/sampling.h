@@ -51,11 +51,14 @@ void rf_sample_2d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_t 
  * light) computes it once with rf_sample_keys and draws with rf_sample_2d_keyed, the same values
  * as rf_sample_2d's. */
 typedef struct {
+    uint32_t xor_key[4], mul_key[4]; /* the round keys of a keyed shuffle of [0, n) */
+} RfPermuteKeys;
+typedef struct {
     RfSampler sampler;
     uint32_t dimension;
     uint64_t pixel, seed;
-    uint64_t base;  /* the pixel's key (sobol, and the other patterns' dimensions but 0) */
-    uint64_t order; /* uniform, stratified: the strata's shuffle */
+    uint64_t base;       /* the pixel's key (sobol, and the other patterns' dimensions but 0) */
+    RfPermuteKeys order; /* uniform, stratified: the strata's shuffle */
     uint64_t sobol_index, sobol_x, sobol_y;
 } RfSampleKeys;
 RfSampleKeys rf_sample_keys(RfSampler s, uint64_t pixel, uint32_t dimension, uint64_t seed);

@@ -43,8 +43,18 @@ static uint64_t rf_key_tag(uint64_t base, uint32_t dimension, uint32_t tag)
  * what the sampler needs is that the strata of two dimensions are paired differently in every
  * pixel, which tests/test_sampling.c checks with chi-square tests. The swap-or-not shuffle
  * (Hoang, Morris, Rogaway 2012) reached every order evenly but cost 30 % of a soft-shadow render
- * (docs/performance.md). */
-static uint32_t rf_permute(uint32_t x, uint32_t n, uint64_t key)
+ * (docs/performance.md). rf_permute_keys draws the round keys (once per pixel and dimension,
+ * rf_sample_keys), rf_permute applies them. */
+static RfPermuteKeys rf_permute_keys(uint64_t key)
+{
+    uint64_t k0 = rf_mix64(key), k1 = rf_mix64(key ^ 0x6A09E667F3BCC909ULL);
+    RfPermuteKeys p = {{(uint32_t)k0, (uint32_t)(k0 >> 32), (uint32_t)k1, (uint32_t)(k1 >> 32)},
+                       {(uint32_t)(k0 >> 16) | 1u, (uint32_t)(k0 >> 48) * 0x9E3779B9u | 1u, (uint32_t)(k1 >> 16) | 1u,
+                        (uint32_t)(k1 >> 40) * 0x85EBCA6Bu | 1u}};
+    return p;
+}
+
+static uint32_t rf_permute(uint32_t x, uint32_t n, const RfPermuteKeys *p)
 {
     if (n <= 1)
         return 0;
@@ -52,14 +62,10 @@ static uint32_t rf_permute(uint32_t x, uint32_t n, uint64_t key)
     while (bits < 32 && ((uint64_t)1 << bits) < n)
         bits++;
     uint32_t mask = (uint32_t)(((uint64_t)1 << bits) - 1), shift = bits > 1 ? (bits + 1) / 2 : 1;
-    uint64_t k0 = rf_mix64(key), k1 = rf_mix64(key ^ 0x6A09E667F3BCC909ULL);
-    uint32_t xk[4] = {(uint32_t)k0, (uint32_t)(k0 >> 32), (uint32_t)k1, (uint32_t)(k1 >> 32)};
-    uint32_t mk[4] = {(uint32_t)(k0 >> 16) | 1u, (uint32_t)(k0 >> 48) * 0x9E3779B9u | 1u,
-                      (uint32_t)(k1 >> 16) | 1u, (uint32_t)(k1 >> 40) * 0x85EBCA6Bu | 1u};
     do {
         for (int r = 0; r < 4; r++) {
-            x = (x ^ xk[r]) & mask;
-            x = (x * mk[r]) & mask;
+            x = (x ^ p->xor_key[r]) & mask;
+            x = (x * p->mul_key[r]) & mask;
             x ^= x >> shift;
         }
     } while (x >= n);
@@ -169,7 +175,7 @@ int rf_sampler_parse(const char *name)
 
 RfSampleKeys rf_sample_keys(RfSampler s, uint64_t pixel, uint32_t dimension, uint64_t seed)
 {
-    RfSampleKeys K = {s, dimension, pixel, seed, 0, 0, 0, 0, 0};
+    RfSampleKeys K = {s, dimension, pixel, seed, 0, {{0, 0, 0, 0}, {0, 0, 0, 0}}, 0, 0, 0};
     /* random: the counter-based generator hashes (pixel, k, dimension) per value; the pixel
      * position (dimension 0) keeps its strata in order */
     if (s == RF_SAMPLER_RANDOM || s >= RF_SAMPLER_COUNT || (s != RF_SAMPLER_SOBOL && dimension == 0))
@@ -180,7 +186,7 @@ RfSampleKeys rf_sample_keys(RfSampler s, uint64_t pixel, uint32_t dimension, uin
         K.sobol_x = rf_key_tag(K.base, dimension, RF_KEY_SOBOL_X);
         K.sobol_y = rf_key_tag(K.base, dimension, RF_KEY_SOBOL_Y);
     } else {
-        K.order = rf_key_tag(K.base, dimension, RF_KEY_ORDER);
+        K.order = rf_permute_keys(rf_key_tag(K.base, dimension, RF_KEY_ORDER));
     }
     return K;
 }
@@ -190,7 +196,7 @@ RfSampleKeys rf_sample_keys(RfSampler s, uint64_t pixel, uint32_t dimension, uin
  * strata of two dimensions are not paired the same way in every pixel. */
 static uint32_t rf_cell_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n)
 {
-    return K->dimension == 0 ? k : rf_permute(k, n, K->order);
+    return K->dimension == 0 ? k : rf_permute(k, n, &K->order);
 }
 
 void rf_sample_2d_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n, double out[2])
@@ -223,7 +229,8 @@ void rf_sample_2d_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n, double ou
         } else {
             /* Latin hypercube: column c, row a second permutation of c */
             uint64_t base = K->dimension ? K->base : rf_key_base(pixel, seed); /* rf_sample_keys' rule */
-            uint32_t r = rf_permute(c, n, rf_key_tag(base, K->dimension, RF_KEY_LHS_Y));
+            RfPermuteKeys lhs = rf_permute_keys(rf_key_tag(base, K->dimension, RF_KEY_LHS_Y));
+            uint32_t r = rf_permute(c, n, &lhs);
             out[0] = rf_below_one(((double)c + u) / (double)n);
             out[1] = rf_below_one(((double)r + v) / (double)n);
         }
