@@ -573,6 +573,28 @@ static void t_sobol_recorded_values(void)
     }
 }
 
+/* A run of samples (rf_sample_2d_keyed_run: Sobol four at a time in SIMD lanes) gives each
+ * sample's rf_sample_2d value, for every pattern, run length and start. */
+static void t_sample_runs(void)
+{
+    for (int s = 0; s < RF_SAMPLER_COUNT; s++)
+        for (uint32_t dim = 0; dim < 3; dim++)
+            for (uint32_t count = 1; count <= 13; count += 3)
+                for (uint32_t k0 = 0; k0 < 40; k0 += 9) {
+                    double run[16][2];
+                    RfSampleKeys keys = rf_sample_keys((RfSampler)s, 1234567 + k0, dim, 99);
+                    rf_sample_2d_keyed_run(&keys, k0, count, 64, run);
+                    for (uint32_t j = 0; j < count; j++) {
+                        double one[2];
+                        rf_sample_2d((RfSampler)s, k0 + j, 64, 1234567 + k0, dim, 99, one);
+                        if (one[0] != run[j][0] || one[1] != run[j][1])
+                            rf_test_fail(__FILE__, __LINE__, "%s sample %u: run (%a, %a), alone (%a, %a)",
+                                         rf_sampler_name((RfSampler)s), k0 + j, run[j][0], run[j][1], one[0], one[1]);
+                        rf_test_checks++;
+                    }
+                }
+}
+
 /* Two dimensions of one Sobol sample must not be paired by their index: without the index
  * shuffle, the 4-strata of both 1D coordinates are functions of the same two bits of k, so the
  * 16 pairs of a pixel fill exactly 4 of the 4 x 4 cells of the (dimension 1, dimension 2) square.
@@ -925,6 +947,7 @@ const RfTest rf_tests_sampling[] = {
     {"sampling_stratified_cells", t_stratified_cells},
     {"sampling_sobol_elementary_intervals", t_sobol_elementary_intervals},
     {"sampling_sobol_recorded_values", t_sobol_recorded_values},
+    {"sampling_runs", t_sample_runs},
     {"sampling_sobol_dimensions_decorrelated", t_sobol_dimensions_decorrelated},
     {"sampling_uniform_grid", t_uniform_grid},
     {"sampling_samples_in_unit_square", t_samples_in_unit_square},

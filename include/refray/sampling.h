@@ -63,6 +63,9 @@ typedef struct {
 } RfSampleKeys;
 RfSampleKeys rf_sample_keys(RfSampler s, uint64_t pixel, uint32_t dimension, uint64_t seed);
 void rf_sample_2d_keyed(const RfSampleKeys *keys, uint32_t k, uint32_t n, double out[2]);
+/* Samples k0 .. k0 + count - 1 of n into out[0 .. count - 1]: rf_sample_2d_keyed's values (the
+ * Sobol pattern four at a time in SIMD lanes where the build has SSE4.1). */
+void rf_sample_2d_keyed_run(const RfSampleKeys *keys, uint32_t k0, uint32_t count, uint32_t n, double (*out)[2]);
 
 /* Sample k of n in [0,1): uniform (k + 0.5) / n, random, stratified (one per stratum
  * [j/n, (j+1)/n), strata shuffled except in dimension 0), sobol (the scrambled van der Corput

@@ -7,6 +7,11 @@
 #include <math.h>
 #include <string.h>
 
+#if defined(__SSE4_1__)
+#include <smmintrin.h>
+#define RF_SAMPLING_SSE 1
+#endif
+
 /* The largest double below 1: where a jittered cell could round up to 1.0, the result is
  * clamped to it, so that every sample lies in [0,1). */
 static const double rf_one_minus = 0x1.fffffffffffffp-1;
@@ -255,6 +260,68 @@ void rf_sample_2d_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n, double ou
     }
     out[0] = rf_rng_uniform(pixel, k, du, seed);
     out[1] = rf_rng_uniform(pixel, k, dv, seed);
+}
+
+#if RF_SAMPLING_SSE
+/* Four lanes of rf_reverse_bits: the bytes by a shuffle, the bits of each nibble by a table. */
+static inline __m128i rf_reverse_bits4(__m128i x)
+{
+    const __m128i bytes = _mm_setr_epi8(3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12);
+    const __m128i nibble = _mm_setr_epi8(0x0, 0x8, 0x4, 0xC, 0x2, 0xA, 0x6, 0xE, 0x1, 0x9, 0x5, 0xD, 0x3, 0xB, 0x7, 0xF);
+    const __m128i low = _mm_set1_epi8(0x0F);
+    x = _mm_shuffle_epi8(x, bytes);
+    __m128i lo = _mm_shuffle_epi8(nibble, _mm_and_si128(x, low));
+    __m128i hi = _mm_shuffle_epi8(nibble, _mm_and_si128(_mm_srli_epi16(x, 4), low));
+    return _mm_or_si128(_mm_slli_epi16(lo, 4), hi);
+}
+
+/* Four lanes of rf_lk_permute, the same operations on 32-bit words. */
+static inline __m128i rf_lk_permute4(__m128i x, uint64_t key)
+{
+    x = _mm_add_epi32(x, _mm_set1_epi32((int)(uint32_t)key));
+    x = _mm_mullo_epi32(x, _mm_set1_epi32((int)((uint32_t)(key >> 32) | 1u)));
+    x = _mm_xor_si128(x, _mm_mullo_epi32(x, _mm_set1_epi32((int)0xA3B195A4u)));
+    x = _mm_add_epi32(x, _mm_set1_epi32((int)(uint32_t)(key >> 16)));
+    x = _mm_mullo_epi32(x, _mm_set1_epi32((int)0x2C1B3C6Du));
+    x = _mm_xor_si128(x, _mm_mullo_epi32(x, _mm_set1_epi32((int)0x297A2D38u)));
+    x = _mm_mullo_epi32(x, _mm_set1_epi32((int)((uint32_t)(key >> 40) | 1u)));
+    x = _mm_xor_si128(x, _mm_mullo_epi32(x, _mm_set1_epi32((int)0x6A09E66Cu)));
+    return x;
+}
+
+/* Sobol samples k0 .. k0 + 3: rf_sample_2d_keyed's integer steps in four lanes. */
+static void rf_sobol4(const RfSampleKeys *K, uint32_t k0, double (*out)[2])
+{
+    __m128i k = _mm_add_epi32(_mm_set1_epi32((int)k0), _mm_setr_epi32(0, 1, 2, 3));
+    __m128i i = rf_reverse_bits4(rf_lk_permute4(rf_reverse_bits4(k), K->sobol_index));
+    __m128i x = rf_reverse_bits4(rf_lk_permute4(i, K->sobol_x));
+    __m128i y = i; /* rf_sobol_y_reversed */
+    y = _mm_xor_si128(y, _mm_and_si128(_mm_srli_epi32(y, 1), _mm_set1_epi32(0x55555555)));
+    y = _mm_xor_si128(y, _mm_and_si128(_mm_srli_epi32(y, 2), _mm_set1_epi32(0x33333333)));
+    y = _mm_xor_si128(y, _mm_and_si128(_mm_srli_epi32(y, 4), _mm_set1_epi32(0x0F0F0F0F)));
+    y = _mm_xor_si128(y, _mm_and_si128(_mm_srli_epi32(y, 8), _mm_set1_epi32(0x00FF00FF)));
+    y = _mm_xor_si128(y, _mm_srli_epi32(y, 16));
+    y = rf_reverse_bits4(rf_lk_permute4(y, K->sobol_y));
+    uint32_t xs[4], ys[4];
+    _mm_storeu_si128((__m128i *)xs, x);
+    _mm_storeu_si128((__m128i *)ys, y);
+    for (int j = 0; j < 4; j++) {
+        out[j][0] = (double)xs[j] * rf_two_m32;
+        out[j][1] = (double)ys[j] * rf_two_m32;
+    }
+}
+#endif
+
+void rf_sample_2d_keyed_run(const RfSampleKeys *K, uint32_t k0, uint32_t count, uint32_t n, double (*out)[2])
+{
+    uint32_t j = 0;
+#if RF_SAMPLING_SSE
+    if (K->sampler == RF_SAMPLER_SOBOL)
+        for (; j + 4 <= count; j += 4)
+            rf_sobol4(K, k0 + j, out + j);
+#endif
+    for (; j < count; j++)
+        rf_sample_2d_keyed(K, k0 + j, n, out[j]);
 }
 
 void rf_sample_2d(RfSampler s, uint32_t k, uint32_t n, uint64_t pixel, uint32_t dimension, uint64_t seed,

@@ -94,15 +94,13 @@ static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHi
     return 1;
 }
 
-/* §3.10 soft shadows: sample j of an area light seen from the hit (stratified over the light
- * with the camera sample's index; keys: the light's sampling dimension, rf_kernel_dim). Fills ls as a point light at the sampled point
- * (an element dA seen under theta_l acts as intensity Le cos(theta_l) dA, scene.h), already
- * divided by the number of samples; 0 when the sample sees the light's back or lies inside. */
-static inline int RF_KNAME(area_sample)(const RfKernelLight *l, const RfSampleKeys *keys, RfVec3 x, int j,
-                                        const RfPathSample *ps, RfLightSample *ls)
+/* §3.10 soft shadows: the area light's point for uv seen from the hit x (uv: sample j of the
+ * light's dimension, rf_kernel_dim, stratified over the light with the camera sample's index).
+ * Fills ls as a point light at the sampled point (an element dA seen under theta_l acts as
+ * intensity Le cos(theta_l) dA, scene.h), already divided by the number of samples; 0 when the
+ * sample sees the light's back or lies inside. */
+static inline int RF_KNAME(area_sample)(const RfKernelLight *l, RfVec3 x, const double uv[2], RfLightSample *ls)
 {
-    double uv[2];
-    rf_sample_2d_keyed(keys, ps->k * (uint32_t)l->samples + (uint32_t)j, ps->n * (uint32_t)l->samples, uv);
     if (l->kind == RF_LIGHT_SPHERE) {
         /* uniform in the cone of directions the sphere covers (solid-angle sampling) */
         RfVec3 to = rf_vec3_sub(l->position, x);
@@ -229,12 +227,19 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
         const RfKernelLight *l = &job->lights[li];
         RfLightSample ls;
         RfRgb term;
-        if (RF_ON(RF_K_AREA) && l->samples > 0) { /* an area light: its samples */
+        if (RF_ON(RF_K_AREA) && l->samples > 0) { /* an area light: its samples, drawn a run at a time */
             RfSampleKeys keys = rf_sample_keys(ps->sampler, ps->pixel, rf_kernel_dim(depth, 2 + li), job->seed);
-            for (int j = 0; j < l->samples; j++)
-                if (RF_KNAME(area_sample)(l, &keys, h.point, j, ps, &ls) &&
-                    RF_KNAME(light_term)(job, &h, m, n, v, &ls, st, &shadow_cache[li], ps, li, j, depth, &term))
-                    color = rf_rgb_add(color, term);
+            uint32_t ns = (uint32_t)l->samples;
+            double uv[16][2];
+            for (uint32_t j0 = 0; j0 < ns; j0 += 16) {
+                uint32_t run = ns - j0 < 16 ? ns - j0 : 16;
+                rf_sample_2d_keyed_run(&keys, ps->k * ns + j0, run, ps->n * ns, uv);
+                for (uint32_t j = 0; j < run; j++)
+                    if (RF_KNAME(area_sample)(l, h.point, uv[j], &ls) &&
+                        RF_KNAME(light_term)(job, &h, m, n, v, &ls, st, &shadow_cache[li], ps, li, (int)(j0 + j),
+                                             depth, &term))
+                        color = rf_rgb_add(color, term);
+            }
             continue;
         }
         if (RF_ON(RF_K_DIRECTIONAL) && l->kind == RF_LIGHT_DIRECTIONAL) {
