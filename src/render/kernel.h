@@ -57,6 +57,7 @@ typedef struct {
     double time;
     RfMotionState *motion; /* the thread's, set to time */
     RfPathLog *log;        /* NULL, except when explaining an invalid sample */
+    const RfSampleKeys *lens; /* the lens dimension's keys of this pixel (NULL: drawn per sample) */
 } RfPathSample;
 
 

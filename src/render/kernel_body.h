@@ -357,7 +357,13 @@ static RfRgb RF_KNAME(camera_sample)(const RfKernelJob *job, double px, double p
     double lens[2] = {0.0, 0.0};
     if (RF_ON(RF_K_LENS) && cam->aperture_radius > 0.0) {
         double uv[2];
-        rf_sample_2d(ps->sampler, ps->k, ps->n, ps->pixel, RF_DIM_LENS, job->seed, uv);
+        RfSampleKeys own;
+        const RfSampleKeys *keys = ps->lens;
+        if (!keys) {
+            own = rf_sample_keys(ps->sampler, ps->pixel, RF_DIM_LENS, job->seed);
+            keys = &own;
+        }
+        rf_sample_2d_keyed(keys, ps->k, ps->n, uv);
         rf_warp_disk(uv[0], uv[1], &lens[0], &lens[1]);
     }
     if (RF_ON(RF_K_MOTION) && ps->motion) {
@@ -383,7 +389,8 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
     for (int y = tile.y0; y < tile.y1; y++)
         for (int x = tile.x0; x < tile.x1; x++) {
             RfPathSample ps = {(uint64_t)y * (uint64_t)job->width + (uint64_t)x, 0, (uint32_t)n, job->sampler,
-                               job->shutter_open, job->motion ? job->motion[thread] : NULL, job->trace_log};
+                               job->shutter_open, job->motion ? job->motion[thread] : NULL, job->trace_log, NULL};
+            RfSampleKeys lens; /* ps.lens, when the pixel takes several samples through a lens */
             RfRgb sum = rf_rgb(0, 0, 0);
             if (n == 1) {
                 if (RF_ON(RF_K_LENS | RF_K_MOTION) && (cam->aperture_radius > 0.0 || job->moving)) {
@@ -397,10 +404,16 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
             } else {
                 RfRgb wsum_c = rf_rgb(0, 0, 0), sq = rf_rgb(0, 0, 0);
                 double wsum = 0.0;
+                /* the pixel's keys of the pixel position and the lens, once for its n samples */
+                RfSampleKeys pos = rf_sample_keys(job->sampler, ps.pixel, RF_DIM_PIXEL, job->seed);
+                if (RF_ON(RF_K_LENS) && cam->aperture_radius > 0.0) {
+                    lens = rf_sample_keys(job->sampler, ps.pixel, RF_DIM_LENS, job->seed);
+                    ps.lens = &lens;
+                }
                 for (int k = 0; k < n; k++) {
                     double s[2];
                     ps.k = (uint32_t)k;
-                    rf_sample_2d(job->sampler, (uint32_t)k, (uint32_t)n, ps.pixel, RF_DIM_PIXEL, job->seed, s);
+                    rf_sample_2d_keyed(&pos, (uint32_t)k, (uint32_t)n, s);
                     if (job->filter_box) {
                         RfRgb c = RF_KNAME(camera_sample)(job, x + s[0], y + s[1], &ps, st, shadow_cache);
                         sum = rf_rgb_add(sum, c);
@@ -437,7 +450,7 @@ static int RF_KNAME(adaptive_centres)(void *ctx, RfTile tile, int thread)
     for (int y = tile.y0; y < tile.y1; y++)
         for (int x = tile.x0; x < tile.x1; x++) {
             RfPathSample ps = {(uint64_t)y * (uint64_t)job->width + (uint64_t)x, 0, 1, RF_SAMPLER_RANDOM,
-                               job->shutter_open, job->motion ? job->motion[thread] : NULL, job->trace_log};
+                               job->shutter_open, job->motion ? job->motion[thread] : NULL, job->trace_log, NULL};
             RfRgb c = RF_KNAME(camera_sample)(job, x + 0.5, y + 0.5, &ps, st, shadow_cache);
             job->centres[rf_kernel_centre(job, x, y)] = c;
         }
@@ -488,13 +501,13 @@ static int RF_KNAME(adaptive_refine)(void *ctx, RfTile tile, int thread)
                 contrast = fmax(contrast, rf_kernel_rgb_diff(c, job->centres[rf_kernel_centre(job, x, y + 1)]));
             if (job->adaptive_depth > 0 && contrast > job->adaptive_threshold) {
                 RfPathSample ps = {pixel, 0, 1, RF_SAMPLER_RANDOM, job->shutter_open,
-                                   job->motion ? job->motion[thread] : NULL, job->trace_log};
+                                   job->motion ? job->motion[thread] : NULL, job->trace_log, NULL};
                 c = RF_KNAME(adaptive_square)(job, x, y, 1.0, 1, c, &ps, st, shadow_cache);
                 st->adaptive_pixels++;
             }
             rf_kernel_store(job, st, x, y, c);
             if (RF_TRACE_ON_JOB(job)) {
-                RfPathSample ps = {pixel, 0, 1, RF_SAMPLER_RANDOM, job->shutter_open, NULL, job->trace_log};
+                RfPathSample ps = {pixel, 0, 1, RF_SAMPLER_RANDOM, job->shutter_open, NULL, job->trace_log, NULL};
                 rf_kernel_trace_pixel(job, &ps, x, y);
             }
         }
@@ -510,7 +523,7 @@ static RfRgb RF_KNAME(explain)(const RfKernelJob *job, uint64_t pixel, int k, Rf
     int x = (int)(pixel % (uint64_t)job->width), y = (int)(pixel / (uint64_t)job->width);
     int n = RF_ON(RF_K_JITTER) && !job->centres ? job->samples : 1;
     RfPathSample ps = {pixel, (uint32_t)(k >= 0 ? k : 0), (uint32_t)n, job->centres ? RF_SAMPLER_RANDOM : job->sampler,
-                       job->shutter_open, job->motion ? job->motion[0] : NULL, log};
+                       job->shutter_open, job->motion ? job->motion[0] : NULL, log, NULL};
     RfRgb c = rf_rgb(0, 0, 0);
     memset(&st, 0, sizeof st);
     if (!cache)
