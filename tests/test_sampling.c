@@ -621,13 +621,26 @@ static void t_sobol_dimensions_decorrelated(void)
 
 static void t_uniform_grid(void)
 {
-    /* n = 6: a = 2 columns, b = 3 rows; n = 5: the same grid, the last row holds one point */
+    /* n = 6: a = 2 columns, b = 3 rows; n = 5 (prime): one row of 5 cells; n = 32: 4 x 8 (not
+     * 5 rows of 7 with the last one partly empty, which was biased); every cell exactly once */
     for (uint64_t px = 0; px < 5; px++) {
         double p[2];
         rf_sample_2d(RF_SAMPLER_UNIFORM, 5, 6, px, 0, px * 13, p);
         RF_CHECK(p[0] == 0.75 && p[1] == 2.5 / 3.0);
         rf_sample_2d(RF_SAMPLER_UNIFORM, 4, 5, px, 0, 1, p);
-        RF_CHECK(p[0] == 0.25 && p[1] == 2.5 / 3.0);
+        RF_CHECK(p[0] == 0.5 && p[1] == 4.5 / 5.0);
+        rf_sample_2d(RF_SAMPLER_UNIFORM, 31, 32, px, 0, 1, p);
+        RF_CHECK(p[0] == 3.5 / 4.0 && p[1] == 7.5 / 8.0);
+        for (uint32_t n = 1; n <= 40; n++) {
+            /* another dimension (shuffled): the mean of the n points is the square's centre */
+            double mx = 0.0, my = 0.0;
+            for (uint32_t k = 0; k < n; k++) {
+                rf_sample_2d(RF_SAMPLER_UNIFORM, k, n, px, 3, 7, p);
+                mx += p[0], my += p[1];
+            }
+            RF_CHECK_NEAR(mx / n, 0.5, 1e-12, 0);
+            RF_CHECK_NEAR(my / n, 0.5, 1e-12, 0);
+        }
         rf_sample_2d(RF_SAMPLER_UNIFORM, 0, 1, px, 0, 1, p);
         RF_CHECK(p[0] == 0.5 && p[1] == 0.5);
         /* the pixel position (dimension 0): cell k in every pixel; another dimension: every cell

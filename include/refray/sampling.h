@@ -21,9 +21,9 @@ extern "C" {
 
 /* How the n samples of a pixel (or of one dimension) are spread over [0,1)^2. */
 typedef enum {
-    RF_SAMPLER_UNIFORM,    /* §3.9 uniform supersampling: the centres of a regular grid (a x b
-                              cells, a = floor(sqrt n), b = ceil(n / a), the last row partly
-                              used), the same positions in every pixel: no noise, aliasing */
+    RF_SAMPLER_UNIFORM,    /* §3.9 uniform supersampling: the centres of a regular grid of a x b
+                              = n cells (a the largest divisor of n up to sqrt n: a prime n gives
+                              one row), the same positions in every pixel: no noise, aliasing */
     RF_SAMPLER_RANDOM,     /* §3.9 stochastic: independent uniform points */
     RF_SAMPLER_STRATIFIED, /* §3.9 stratified (jittered): one uniform point per cell of a k x k grid
                               when n = k^2; otherwise n x n Latin-hypercube strata (one point per

@@ -156,6 +156,19 @@ static uint32_t rf_isqrt(uint32_t n)
     return (uint32_t)a;
 }
 
+/* The columns a of the uniform pattern's a x b grid with a b = n exactly: the largest divisor of
+ * n not above sqrt(n) (1 for a prime n: one row of n cells). Every cell then has the area 1/n and
+ * holds one sample, so the grid's mean is the midpoint rule. (The first version took
+ * a = floor(sqrt n) rows of ceil(n / a) and left the last row partly empty, which weighted the
+ * upper rows more: at 32 light samples a biased estimate of the light.) */
+static uint32_t rf_grid_columns(uint32_t n)
+{
+    uint32_t a = rf_isqrt(n);
+    while (n % a)
+        a--;
+    return a;
+}
+
 /* ---- sample patterns ----------------------------------------------------------------------- */
 
 const char *rf_sampler_name(RfSampler s)
@@ -216,7 +229,7 @@ void rf_sample_2d_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n, double ou
          * shuffled order, as the stratified sampler does, or sample k would put its lens and
          * light points on the same cell as its pixel offset in every pixel (a bias that never
          * averages out) */
-        uint32_t a = rf_isqrt(n), b = n / a + (n % a != 0);
+        uint32_t a = rf_grid_columns(n), b = n / a;
         uint32_t c = rf_cell_keyed(K, k % n, n);
         out[0] = ((double)(c % a) + 0.5) / (double)a;
         out[1] = ((double)(c / a) + 0.5) / (double)b;
