@@ -2,6 +2,8 @@
  * and the same occlusion answer, for triangles (tested by the BVH) mixed with spheres (tested by
  * the caller), with the vector and the scalar kernels, on random scenes, degenerate ones and
  * rays through shared edges. */
+#include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -220,6 +222,43 @@ static void t_bvh_shared_edges(void)
     }
 }
 
+/* The ray's slab constants (rf_bvh_ray_init, lanes of AVX where built with it) against their
+ * definition written out per axis here: the origin rounded to float and moved outward by
+ * |f| 2^-23 + 2^-126, 1/d in float shrunk and grown by 2^-21, the near factor clamped to 2^127,
+ * on rays with zero (+0 and -0), tiny, huge and infinite direction components. */
+static void t_bvh_ray_constants(void)
+{
+    static const double vals[] = {0.0, -0.0, 1.0, -1.0, 0.3, -7.25, 1e-30, -1e-300, 1e30, -3e38, 5e-324, 1e300};
+    const size_t nv = sizeof vals / sizeof vals[0];
+    RfBvh bvh;
+    memset(&bvh, 0, sizeof bvh);
+    uint64_t st = 12345;
+    for (int i = 0; i < 4000; i++) {
+        double o[3], d[3];
+        for (int a = 0; a < 3; a++) {
+            st = st * 6364136223846793005ULL + 1442695040888963407ULL;
+            o[a] = vals[(st >> 33) % nv] * (i % 3 ? 1.0 : 3.7);
+            d[a] = vals[(st >> 41) % nv] * (i % 5 ? 1.0 : 0.61);
+        }
+        RfBvhRay r;
+        rf_bvh_ray_init(&bvh, rf_ray(rf_vec3(o[0], o[1], o[2]), rf_vec3(d[0], d[1], d[2])), &r);
+        for (int a = 0; a < 3; a++) {
+            int neg = signbit(d[a]) != 0;
+            float f = (float)o[a], w = fabsf(f) * 0x1p-23f + 0x1p-126f, up = f + w, down = f - w;
+            float fi = (float)(1.0 / d[a]), near = fi * (1.0f - 0x1p-21f), far = fi * (1.0f + 0x1p-21f);
+            float inv0 = fabsf(near) <= 0x1p127f ? near : neg ? -0x1p127f : 0x1p127f;
+            float org0 = neg ? down : up, org1 = neg ? up : down; /* bit for bit: NaN too (inf - inf) */
+            int ok = r.near_hi[a] == neg && memcmp(&r.org[0][a], &org0, sizeof org0) == 0 &&
+                     memcmp(&r.org[1][a], &org1, sizeof org1) == 0 && memcmp(&r.inv[0][a], &inv0, sizeof inv0) == 0 &&
+                     memcmp(&r.inv[1][a], &far, sizeof far) == 0;
+            if (!ok)
+                rf_test_fail(__FILE__, __LINE__, "axis %d of o = %g, d = %g: org %a %a, inv %a %a", a, o[a], d[a],
+                             r.org[0][a], r.org[1][a], r.inv[0][a], r.inv[1][a]);
+            rf_test_checks++;
+        }
+    }
+}
+
 static void t_bvh_degenerate(void)
 {
     RfTestRng r = {12};
@@ -267,5 +306,6 @@ const RfTest rf_tests_bvh[] = {
     {"bvh_random_vs_brute_force", t_bvh_random},
     {"bvh_shared_edges_vs_brute_force", t_bvh_shared_edges},
     {"bvh_degenerate", t_bvh_degenerate},
+    {"bvh_ray_constants", t_bvh_ray_constants},
     RF_TEST_END,
 };

@@ -118,8 +118,8 @@ typedef struct {
     RfRay ray;
     int tri_ready;     /* wr and the filter's fields are set (always when a triangle won) */
     RfWatertightRay wr;
-    float org[2][3];   /* [0]: origin rounded for the near planes, [1]: for the far planes */
-    float inv[2][3];   /* 1/dir shrunk ([0], near) and grown ([1], far) by a few ulps */
+    float org[2][4];   /* [0]: origin rounded for the near planes, [1]: for the far planes (x, y, z, -) */
+    float inv[2][4];   /* 1/dir shrunk ([0], near) and grown ([1], far) by a few ulps (x, y, z, -) */
     int near_hi[3];    /* 1 where dir < 0: the near plane is the box's hi side */
     float fo[3];       /* filter: the origin in float (nearest), permuted to kx, ky, kz */
     float fsx, fsy;    /* filter: the shear in float */

@@ -29,33 +29,47 @@ void rf_bvh_ray_init(const RfBvh *bvh, RfRay ray, RfBvhRay *r)
     (void)bvh;
     r->ray = ray;
     r->tri_ready = 0;
+    /* Slab distances (plane - origin) * inv, rounded toward "hit" (docs/performance.md): the
+     * near plane's origin moved so the difference can only shrink, the far plane's so it can
+     * only grow (rf__widen_up/down: past the rounding of o to float), and 1/dir shrunk / grown by
+     * 8 ulps, which covers the roundings of the conversion, the difference and the product. A
+     * zero component has inv = inf: the near factor is clamped to 2^127 (still a lower bound) so
+     * that a finite difference stays finite; the far factor may be inf. No branches: they would
+     * be guesses per ray. The AVX path does the three axes in lanes, each lane the scalar
+     * path's operations in its order (the same floats). */
+#if RF_BVH_AVX
+    const __m128 sign = _mm_set1_ps(-0.0f);
+    __m256d dd = _mm256_set_pd(1.0, ray.dir.z, ray.dir.y, ray.dir.x);
+    __m128 f = _mm256_cvtpd_ps(_mm256_set_pd(0.0, ray.origin.z, ray.origin.y, ray.origin.x));
+    __m128 fi = _mm256_cvtpd_ps(_mm256_div_pd(_mm256_set1_pd(1.0), dd)); /* 1/d: +-inf for +-0 */
+    __m128 neg = _mm_castsi128_ps(_mm_srai_epi32(_mm_castps_si128(_mm256_cvtpd_ps(dd)), 31)); /* signbit(d) */
+    __m128 w = _mm_add_ps(_mm_mul_ps(_mm_andnot_ps(sign, f), _mm_set1_ps(0x1p-23f)), _mm_set1_ps(0x1p-126f));
+    __m128 up = _mm_add_ps(f, w), down = _mm_sub_ps(f, w);
+    _mm_storeu_ps(r->org[0], _mm_blendv_ps(up, down, neg));
+    _mm_storeu_ps(r->org[1], _mm_blendv_ps(down, up, neg));
+    __m128 near = _mm_mul_ps(fi, _mm_set1_ps(1.0f - 0x1p-21f)), far = _mm_mul_ps(fi, _mm_set1_ps(1.0f + 0x1p-21f));
+    __m128 clamp = _mm_or_ps(_mm_set1_ps(0x1p127f), _mm_and_ps(neg, sign));
+    _mm_storeu_ps(r->inv[0], _mm_blendv_ps(clamp, near, _mm_cmple_ps(_mm_andnot_ps(sign, near), _mm_set1_ps(0x1p127f))));
+    _mm_storeu_ps(r->inv[1], far);
+    int m = _mm_movemask_ps(neg);
+    r->near_hi[0] = m & 1;
+    r->near_hi[1] = (m >> 1) & 1;
+    r->near_hi[2] = (m >> 2) & 1;
+#else
     const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
     const double d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
-    double inv[4]; /* 1/d: +-inf for +-0 */
-#if RF_BVH_AVX
-    _mm256_storeu_pd(inv, _mm256_div_pd(_mm256_set1_pd(1.0), _mm256_set_pd(1.0, d[2], d[1], d[0])));
-#else
-    for (int a = 0; a < 3; a++)
-        inv[a] = 1.0 / d[a];
-#endif
     for (int a = 0; a < 3; a++) {
-        /* Slab distances (plane - origin) * inv, rounded toward "hit" (docs/performance.md):
-         * the near plane's origin moved so the difference can only shrink, the far plane's so
-         * it can only grow (rf__widen_up/down: past the rounding of o to float), and
-         * 1/dir shrunk / grown by 8 ulps, which covers the roundings of the conversion, the
-         * difference and the product. A zero component has inv = inf: the near factor is
-         * clamped to 2^127 (still a lower bound) so that a finite difference stays finite; the
-         * far factor may be inf. No branches: they would be guesses per ray. */
         int neg = signbit(d[a]) != 0; /* the sign of 1/d, without waiting for the division */
         float up = rf__widen_up(o[a]), down = rf__widen_down(o[a]);
         r->near_hi[a] = neg;
         r->org[0][a] = neg ? down : up;
         r->org[1][a] = neg ? up : down;
-        float fi = (float)inv[a];
+        float fi = (float)(1.0 / d[a]);
         float near = fi * (1.0f - 0x1p-21f), far = fi * (1.0f + 0x1p-21f);
         r->inv[0][a] = fabsf(near) <= 0x1p127f ? near : neg ? -0x1p127f : 0x1p127f;
         r->inv[1][a] = far;
     }
+#endif
 }
 
 /* The triangle tests' set-up, made when the first triangle block is reached (a ray that meets
