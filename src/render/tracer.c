@@ -417,6 +417,7 @@ typedef struct {
     int material;       /* its material */
     int smooth;         /* it interpolates vertex normals */
     RfHit hit;          /* hit.normal in the space of the query's ray */
+    const RfTriangle *tri; /* a BVH triangle's double vertices when it is the hit (else NULL) */
     int instanced;      /* the hit is inside an instance: nmat takes its normals to this space */
     RfMat3 nmat;
     uint64_t occluder;  /* shadow: the key of the world item found */
@@ -560,6 +561,7 @@ static int hit_instance(Query *q, const RfPrimitive *p, RfRay ray, double t_min,
     if (q->shadow)
         return *t = tm, 1;
     q->hit = sub.hit;
+    q->tri = NULL;
     q->hit.normal = rf_vec3_normalize(rf_mat3_mul_vec(normal_to_world, sub.hit.normal));
     q->item = sub.item;
     q->material = sub.material;
@@ -625,6 +627,7 @@ again:
         }
     }
     q->hit = h;
+    q->tri = NULL;
     q->item = it;
     q->material = p->material;
     q->smooth = it.sub >= 0 && prim_smooth(s, p);
@@ -700,6 +703,7 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
     if (!found)
         return 0;
     if (best.tri || best.sphere) { /* the winner's details: the same bits as the BVH's t */
+        q->tri = best.tri;
         if (best.tri) { /* rf_intersect_triangle_watertight's hit from the BVH's own test */
             q->hit.t = bt;
             for (int i = 0; i < 3; i++)
@@ -832,7 +836,7 @@ int rf_tracer_intersect_at(const RfTracer *t, RfRay ray, const RfMotionState *ms
             out->scale = fmax(max_abs3(out->point), sc);
         }
     } else if (!q.instanced && q.item.sub >= 0 && (pr->type == RF_PRIM_TRIANGLE || pr->type == RF_PRIM_POLYGON)) {
-        RfTriangle tri = item_triangle(t, q.item);
+        RfTriangle tri = q.tri ? *q.tri : item_triangle(t, q.item); /* the BVH block's copy: the same doubles */
         out->point = rf_vec3_add(rf_vec3_add(rf_vec3_scale(tri.p1, q.hit.l[0]), rf_vec3_scale(tri.p2, q.hit.l[1])),
                                  rf_vec3_scale(tri.p3, q.hit.l[2]));
         out->scale = fmax(max_abs3(tri.p1), fmax(max_abs3(tri.p2), max_abs3(tri.p3)));
