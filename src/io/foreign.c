@@ -178,7 +178,10 @@ static const char *hdr_layout(const unsigned char *d, size_t n)
         const unsigned char *nl = memchr(d + at, '\n', n - at);
         if (!nl)
             return "truncated header";
-        blank = nl == d + at;
+        /* stb_image reads each line as a C string: one that starts with a 0 byte is "empty" and
+         * ends the header there too (a walk that went on looked for the resolution in the wrong
+         * line and let a hanging file through; found by fuzzing) */
+        blank = nl == d + at || d[at] == 0;
         at = (size_t)(nl - d) + 1;
     }
     /* the resolution line as stb_image reads it: up to 1023 characters, the rest of the line
