@@ -98,6 +98,10 @@ int rf_watertight_t(const RfWatertightRay *wr, const RfTriangle *tri, double *t)
  * barycentric coordinates are e[0..2] / e[3], rf_intersect_triangle_watertight's bit for bit
  * (the BVH keeps them for its winner instead of testing it again). */
 int rf_watertight_edges(const RfWatertightRay *wr, const RfTriangle *tri, double *t, double e[4]);
+/* The hit at t of the triangle whose edge functions rf_watertight_edges gave: barycentric
+ * coordinates e[0..2] / e[3] and the unit normal (rf_triangle_unit_normal, or *normal when the
+ * caller has it already) — rf_intersect_triangle_watertight's hit, which is made by this too. */
+void rf_watertight_hit(const RfTriangle *tri, double t, const double e[4], const RfVec3 *normal, RfHit *hit);
 /* normalise((p2 - p1) x (p3 - p1)): the normal every triangle hit reports. */
 RfVec3 rf_triangle_unit_normal(const RfTriangle *tri);
 

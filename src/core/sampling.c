@@ -194,16 +194,15 @@ int rf_sampler_parse(const char *name)
 RfSampleKeys rf_sample_keys(RfSampler s, uint64_t pixel, uint32_t dimension, uint64_t seed)
 {
     RfSampleKeys K = {s, dimension, pixel, seed, 0, {{0, 0, 0, 0}, {0, 0, 0, 0}}, 0, 0, 0};
-    /* random: the counter-based generator hashes (pixel, k, dimension) per value; the pixel
-     * position (dimension 0) keeps its strata in order */
-    if (s == RF_SAMPLER_RANDOM || s >= RF_SAMPLER_COUNT || (s != RF_SAMPLER_SOBOL && dimension == 0))
+    /* random: the counter-based generator hashes (pixel, k, dimension) per value */
+    if (s == RF_SAMPLER_RANDOM || s >= RF_SAMPLER_COUNT)
         return K;
     K.base = rf_key_base(pixel, seed);
     if (s == RF_SAMPLER_SOBOL) {
         K.sobol_index = rf_key_tag(K.base, dimension, RF_KEY_SOBOL_INDEX);
         K.sobol_x = rf_key_tag(K.base, dimension, RF_KEY_SOBOL_X);
         K.sobol_y = rf_key_tag(K.base, dimension, RF_KEY_SOBOL_Y);
-    } else {
+    } else if (dimension != 0) { /* the pixel position (dimension 0) keeps its strata in order */
         K.order = rf_permute_keys(rf_key_tag(K.base, dimension, RF_KEY_ORDER));
     }
     return K;
@@ -246,8 +245,7 @@ void rf_sample_2d_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n, double ou
             out[1] = rf_below_one(((double)(c / side) + v) / (double)side);
         } else {
             /* Latin hypercube: column c, row a second permutation of c */
-            uint64_t base = K->dimension ? K->base : rf_key_base(pixel, seed); /* rf_sample_keys' rule */
-            RfPermuteKeys lhs = rf_permute_keys(rf_key_tag(base, K->dimension, RF_KEY_LHS_Y));
+            RfPermuteKeys lhs = rf_permute_keys(rf_key_tag(K->base, K->dimension, RF_KEY_LHS_Y));
             uint32_t r = rf_permute(c, n, &lhs);
             out[0] = rf_below_one(((double)c + u) / (double)n);
             out[1] = rf_below_one(((double)r + v) / (double)n);
@@ -302,19 +300,23 @@ static inline __m128i rf_lk_permute4(__m128i x, uint64_t key)
     return x;
 }
 
+/* Four lanes of rf_sobol_y_reversed. */
+static inline __m128i rf_sobol_y_reversed4(__m128i i)
+{
+    i = _mm_xor_si128(i, _mm_and_si128(_mm_srli_epi32(i, 1), _mm_set1_epi32(0x55555555)));
+    i = _mm_xor_si128(i, _mm_and_si128(_mm_srli_epi32(i, 2), _mm_set1_epi32(0x33333333)));
+    i = _mm_xor_si128(i, _mm_and_si128(_mm_srli_epi32(i, 4), _mm_set1_epi32(0x0F0F0F0F)));
+    i = _mm_xor_si128(i, _mm_and_si128(_mm_srli_epi32(i, 8), _mm_set1_epi32(0x00FF00FF)));
+    return _mm_xor_si128(i, _mm_srli_epi32(i, 16));
+}
+
 /* Sobol samples k0 .. k0 + 3: rf_sample_2d_keyed's integer steps in four lanes. */
 static void rf_sobol4(const RfSampleKeys *K, uint32_t k0, double (*out)[2])
 {
     __m128i k = _mm_add_epi32(_mm_set1_epi32((int)k0), _mm_setr_epi32(0, 1, 2, 3));
     __m128i i = rf_reverse_bits4(rf_lk_permute4(rf_reverse_bits4(k), K->sobol_index));
     __m128i x = rf_reverse_bits4(rf_lk_permute4(i, K->sobol_x));
-    __m128i y = i; /* rf_sobol_y_reversed */
-    y = _mm_xor_si128(y, _mm_and_si128(_mm_srli_epi32(y, 1), _mm_set1_epi32(0x55555555)));
-    y = _mm_xor_si128(y, _mm_and_si128(_mm_srli_epi32(y, 2), _mm_set1_epi32(0x33333333)));
-    y = _mm_xor_si128(y, _mm_and_si128(_mm_srli_epi32(y, 4), _mm_set1_epi32(0x0F0F0F0F)));
-    y = _mm_xor_si128(y, _mm_and_si128(_mm_srli_epi32(y, 8), _mm_set1_epi32(0x00FF00FF)));
-    y = _mm_xor_si128(y, _mm_srli_epi32(y, 16));
-    y = rf_reverse_bits4(rf_lk_permute4(y, K->sobol_y));
+    __m128i y = rf_reverse_bits4(rf_lk_permute4(rf_sobol_y_reversed4(i), K->sobol_y));
     uint32_t xs[4], ys[4];
     _mm_storeu_si128((__m128i *)xs, x);
     _mm_storeu_si128((__m128i *)ys, y);

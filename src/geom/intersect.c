@@ -212,6 +212,14 @@ static void set_triangle_hit(RfHit *hit, RfTriangle tri, double t, double l1, do
     hit->normal = triangle_unit_normal(tri);
 }
 
+void rf_watertight_hit(const RfTriangle *tri, double t, const double e[4], const RfVec3 *normal, RfHit *hit)
+{
+    hit->t = t;
+    for (int i = 0; i < 3; i++)
+        hit->l[i] = e[i] / e[3];
+    hit->normal = normal ? *normal : triangle_unit_normal(*tri);
+}
+
 /* §3.5.3 as in the script: the plane <x,n> = <p1,n> with n = (p2-p1) x (p3-p1), then the
  * barycentric coordinates of the plane point (rf_barycentric, §2.4), inside iff all >= 0.
  * Parallel rays and degenerate triangles miss; an edge or vertex point is inside (a zero
@@ -350,10 +358,10 @@ RfVec3 rf_triangle_unit_normal(const RfTriangle *tri) { return triangle_unit_nor
 int rf_intersect_triangle_watertight(const RfWatertightRay *w, RfTriangle tri, double t_min,
                                      double t_max, RfHit *hit)
 {
-    double e[3], det, t;
-    if (!watertight(w, &tri, e, &det, &t) || !in_range(t, t_min, t_max))
+    double e[4], t;
+    if (!watertight(w, &tri, e, &e[3], &t) || !in_range(t, t_min, t_max))
         return 0;
-    set_triangle_hit(hit, tri, t, e[0] / det, e[1] / det, e[2] / det);
+    rf_watertight_hit(&tri, t, e, NULL, hit);
     return 1;
 }
 

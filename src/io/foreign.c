@@ -220,7 +220,8 @@ static const char *hdr_layout(const unsigned char *d, size_t n)
     return at > n ? "truncated pixels" : NULL;
 }
 
-RfStatus rf_stb_read(const char *path, RfPngOptions decode, RfImage *img, int *encoded, char *err, size_t err_size)
+RfStatus rf_stb_read(const char *path, RfImageFile format, RfPngOptions decode, RfImage *img, int *encoded, char *err,
+                     size_t err_size)
 {
     FILE *fp = NULL;
     RfStatus st = open_checked(path, decode, img, &fp, err, err_size);
@@ -265,10 +266,7 @@ RfStatus rf_stb_read(const char *path, RfPngOptions decode, RfImage *img, int *e
     /* refused before stb_image allocates anything for a size from a corrupt header; no format
      * stb_image reads here packs more than 512 pixels into a byte (a grey progressive JPEG whose
      * blocks have only their DC code, 1 bit for 64 pixels) */
-    const char *format = size >= 2 && bytes[0] == 0xff ? "JPEG" : size >= 2 && bytes[0] == 'B' ? "BMP"
-                       : size >= 2 && bytes[0] == '#'                    ? "HDR"
-                                                                         : "TGA";
-    if (!bad && rf_io_check_claim(path, format, w, h, (double)w * h, 512.0, 4096.0, err, err_size) != RF_OK) {
+    if (!bad && rf_io_check_claim(path, rf_image_file_name(format), w, h, (double)w * h, 512.0, 4096.0, err, err_size) != RF_OK) {
         free(bytes);
         return RF_ERR_PARSE;
     }

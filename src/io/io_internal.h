@@ -65,9 +65,11 @@ double rf_io_encode_value(double v, RfPngOptions opt);
 /* The readers of the formats students write besides EXR and PNG (foreign.c), through Debian's
  * libraries: netpbm (PBM/PGM/PPM, plain and raw), stb_image (JPEG, BMP, TGA, Radiance HDR),
  * libtiff. *encoded (may be NULL) is set to 1 for integer codes decoded with the curve, 0 for
- * linear floats (HDR, float TIFF). */
+ * linear floats (HDR, float TIFF). rf_stb_read's format is the one the dispatcher sniffed (for
+ * messages; stb_image finds it again by itself). */
 RfStatus rf_pnm_read(const char *path, RfPngOptions decode, RfImage *img, int *encoded, char *err, size_t err_size);
-RfStatus rf_stb_read(const char *path, RfPngOptions decode, RfImage *img, int *encoded, char *err, size_t err_size);
+RfStatus rf_stb_read(const char *path, RfImageFile format, RfPngOptions decode, RfImage *img, int *encoded, char *err,
+                     size_t err_size);
 RfStatus rf_tiff_read(const char *path, RfPngOptions decode, RfImage *img, int *encoded, char *err, size_t err_size);
 
 #endif

@@ -203,12 +203,11 @@ static RfStatus png_read_impl(const char *path, RfPngOptions decode, RfImage *im
     png_read_info(png, info);
     color_type = png_get_color_type(png, info);
     depth = png_get_bit_depth(png, info);
+    w = png_get_image_width(png, info);
+    h = png_get_image_height(png, info);
     /* the filtered rows come out of zlib, at most ~1032 bytes from one */
-    st = rf_io_check_claim(path, "PNG", (long long)png_get_image_width(png, info),
-                           (long long)png_get_image_height(png, info),
-                           (double)png_get_image_width(png, info) * png_get_image_height(png, info) *
-                               png_get_channels(png, info) * depth / 8.0,
-                           1032.0, 65536.0, err, err_size);
+    st = rf_io_check_claim(path, "PNG", w, h, (double)w * h * png_get_channels(png, info) * depth / 8.0, 1032.0,
+                           65536.0, err, err_size);
     if (st != RF_OK) {
         png_destroy_read_struct(&png, &info, NULL);
         fclose(fp);
@@ -226,9 +225,7 @@ static RfStatus png_read_impl(const char *path, RfPngOptions decode, RfImage *im
         (color_type == PNG_COLOR_TYPE_GRAY && png_get_valid(png, info, PNG_INFO_tRNS)))
         png_set_gray_to_rgb(png);
     png_set_interlace_handling(png);
-    png_read_update_info(png, info);
-    w = png_get_image_width(png, info);
-    h = png_get_image_height(png, info);
+    png_read_update_info(png, info); /* the transforms change depth and channels, not the size */
     depth = png_get_bit_depth(png, info);
     nc = png_get_channels(png, info);
     rowbytes = png_get_rowbytes(png, info);

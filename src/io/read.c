@@ -73,7 +73,7 @@ RfStatus rf_image_read_source(const char *path, RfPngOptions decode, RfImage *im
     case RF_FILE_PNM: st = rf_pnm_read(path, decode, img, &encoded, err, err_size); break;
     case RF_FILE_TIFF: st = rf_tiff_read(path, decode, img, &encoded, err, err_size); break;
     case RF_FILE_JPEG: case RF_FILE_BMP: case RF_FILE_HDR: case RF_FILE_TGA:
-        st = rf_stb_read(path, decode, img, &encoded, err, err_size);
+        st = rf_stb_read(path, f, decode, img, &encoded, err, err_size);
         break;
     default:
         return rf_io_fail(RF_ERR_PARSE, err, err_size, path,

@@ -705,10 +705,7 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
     if (best.tri || best.sphere) { /* the winner's details: the same bits as the BVH's t */
         q->tri = best.tri;
         if (best.tri) { /* rf_intersect_triangle_watertight's hit from the BVH's own test */
-            q->hit.t = bt;
-            for (int i = 0; i < 3; i++)
-                q->hit.l[i] = best.edges[i] / best.edges[3];
-            q->hit.normal = best.has_normal ? best.normal : rf_triangle_unit_normal(best.tri);
+            rf_watertight_hit(best.tri, bt, best.edges, best.has_normal ? &best.normal : NULL, &q->hit);
         } else {
             q->hit.t = bt;
             q->hit.l[0] = q->hit.l[1] = q->hit.l[2] = 0.0;
