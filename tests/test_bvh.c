@@ -302,10 +302,76 @@ static void t_bvh_degenerate(void)
     free(s.balls);
 }
 
+/* Small scenes: the root's free slots. A room of five quads (ten triangles, as scenes/soft.rf)
+ * and two spheres: the binary SAH keeps four of the quads in one leaf (every two-way cut of them
+ * has a box as large as the room), the root's refinement gives each quad its own leaf, so the
+ * tree is one node with five one-block triangle leaves (three blocks without it). Then random
+ * scenes of 1 to 12 items, where leaves are cut into chains of every shape, against brute force. */
+static void t_bvh_small_root(void)
+{
+    static const double quads[5][4][3] = {
+        {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}},  {{-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}},
+        {{-1, 0, -1}, {1, 0, -1}, {1, 2, -1}, {-1, 2, -1}}, {{-1, 0, -1}, {-1, 2, -1}, {-1, 2, 1}, {-1, 0, 1}},
+        {{1, 0, -1}, {1, 0, 1}, {1, 2, 1}, {1, 2, -1}}};
+    RfTriangle tris[10];
+    int sides[10];
+    RfSphere balls[2] = {{{-0.4, 0.4, -0.35}, 0.4}, {{0.45, 0.3, 0.45}, 0.3}};
+    for (int q = 0; q < 5; q++)
+        for (int h = 0; h < 2; h++) {
+            const double *a = quads[q][0], *b = quads[q][1 + h], *c = quads[q][2 + h];
+            RfTriangle t = {rf_vec3(a[0], a[1], a[2]), rf_vec3(b[0], b[1], b[2]), rf_vec3(c[0], c[1], c[2])};
+            tris[2 * q + h] = t;
+            sides[2 * q + h] = RF_BVH_SEE_BOTH;
+        }
+    Scene room = {10, 2, tris, sides, balls, 0};
+    RfBvh bvh;
+    RfBvhDesc d = {12, describe, &room, 1, 0};
+    RF_CHECK_EQ_INT(rf_bvh_build(&bvh, &d), RF_OK);
+    RF_CHECK_EQ_INT(bvh.node_count, 1);
+    RF_CHECK_EQ_INT(bvh.block_count, 5);
+    rf_bvh_free(&bvh);
+    RfTestRng r = {13};
+    RfRay rays[400];
+    for (int i = 0; i < 400; i++) /* from inside the room, as shadow and camera rays are */
+        rays[i] = rf_ray(rf_vec3(rf_test_uniform(&r, -1, 1), rf_test_uniform(&r, 0, 2), rf_test_uniform(&r, -1, 1)),
+                         rf_vec3(rf_test_uniform(&r, -1, 1), rf_test_uniform(&r, -1, 1), rf_test_uniform(&r, -1, 1)));
+    check_rays(&room, rays, 400, HUGE_VAL, "room");
+    check_rays(&room, rays, 400, 1.0, "room, t_max 1");
+    for (int n = 1; n <= 12; n++)
+        for (int rep = 0; rep < 4; rep++) {
+            RfSphere few[12];
+            Scene s = {0, 0, NULL, NULL, few, 0};
+            s.n_tris = n > 10 ? 10 : (int)rf_test_uniform(&r, 0, n + 0.999);
+            s.n_balls = n - s.n_tris;
+            RfTriangle mine[10];
+            int mine_sides[10];
+            for (int i = 0; i < s.n_tris; i++) { /* the room's triangles, moved apart and scaled */
+                RfVec3 off = rf_vec3(rf_test_uniform(&r, -3, 3), rf_test_uniform(&r, -1, 1), rf_test_uniform(&r, -3, 3));
+                double sc = rf_test_uniform(&r, 0.1, 2);
+                mine[i].p1 = rf_vec3_add(rf_vec3_scale(tris[i].p1, sc), off);
+                mine[i].p2 = rf_vec3_add(rf_vec3_scale(tris[i].p2, sc), off);
+                mine[i].p3 = rf_vec3_add(rf_vec3_scale(tris[i].p3, sc), off);
+                mine_sides[i] = i % 3;
+            }
+            for (int i = 0; i < s.n_balls; i++) {
+                few[i].center = rf_vec3(rf_test_uniform(&r, -3, 3), rf_test_uniform(&r, 0, 2), rf_test_uniform(&r, -3, 3));
+                few[i].radius = rf_test_uniform(&r, 0.05, 1);
+            }
+            s.tris = mine;
+            s.sides = mine_sides;
+            RfRay sr[200];
+            for (int i = 0; i < 200; i++)
+                sr[i] = random_ray(&r, 4);
+            check_rays(&s, sr, 200, HUGE_VAL, "small scene");
+            check_rays(&s, sr, 200, 2.0, "small scene, t_max 2");
+        }
+}
+
 const RfTest rf_tests_bvh[] = {
     {"bvh_random_vs_brute_force", t_bvh_random},
     {"bvh_shared_edges_vs_brute_force", t_bvh_shared_edges},
     {"bvh_degenerate", t_bvh_degenerate},
     {"bvh_ray_constants", t_bvh_ray_constants},
+    {"bvh_small_root_vs_brute_force", t_bvh_small_root},
     RF_TEST_END,
 };

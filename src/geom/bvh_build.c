@@ -426,7 +426,10 @@ static int cmp_task_size(const void *a, const void *b, void *ctx);
 /* ---- build: collapse to 8-wide nodes ------------------------------------------------------- */
 
 typedef struct {
-    const BNode *bn;      /* the whole binary tree */
+    BNode *bn;            /* the whole binary tree, room for ROOT_EXTRA more nodes at bn_count */
+    int bn_count;
+    Ref *refs;            /* the items' boxes and ids, in leaf order (the root's refinement */
+    int32_t *ids;         /* reorders a leaf's range) */
     RfBvhNode *nodes;     /* wide nodes, growing */
     int count, cap;
     int depth;
@@ -450,14 +453,155 @@ static int wide_new(Collapse *c)
 
 static int is_leaf(const BNode *n) { return n->a < 0; }
 
+/* ---- the root's free slots ------------------------------------------------------------------
+ * Every ray tests all 8 slots of the root, used or not, so a small scene whose binary tree has
+ * fewer than 8 leaves gets its leaves cut into more slots for free. The binary SAH cannot see
+ * such cuts: a leaf of four wall quads of a room has a box as large as the room, and so does
+ * every two-way split of it, while four leaves of one flat quad each have a quarter of the
+ * cost. So the root tries every partition of a leaf (at most MAX_LEAF items: Bell(8) = 4140
+ * partitions) into as many groups as there are free slots plus one, and takes the one of least
+ * SAH cost (area times leaf_cost) when it is below the leaf's. The traversal's answers do not
+ * depend on the tree (docs/performance.md, "Ties"). */
+#define ROOT_EXTRA (2 * WIDTH) /* nodes the refinement may add: 2 (groups - 1) per leaf */
+
+typedef struct {
+    const Ref *refs;
+    int m, tris, max_groups;
+    int cur[MAX_LEAF], best[MAX_LEAF];
+    float best_cost;
+} Partition;
+
+/* The SAH cost of the partition cur[0..m) into groups 0..g-1. */
+static float partition_cost(const Partition *p, int g)
+{
+    float cost = 0.0f;
+    for (int q = 0; q < g; q++) {
+        Box4 box = box4_empty();
+        int n = 0;
+        for (int i = 0; i < p->m; i++)
+            if (p->cur[i] == q) {
+                box4_grow(&box, p->refs[i].lo, p->refs[i].hi);
+                n++;
+            }
+        cost += box4_area(&box) * leaf_cost(n, p->tris ? n : 0);
+    }
+    return cost;
+}
+
+/* Every partition of items i.. given cur[0..i) in g groups (restricted growth strings). */
+static void partition_search(Partition *p, int i, int g)
+{
+    if (i == p->m) {
+        float c = partition_cost(p, g);
+        if (c < p->best_cost) {
+            p->best_cost = c;
+            memcpy(p->best, p->cur, sizeof p->best);
+        }
+        return;
+    }
+    for (int q = 0; q <= g && q < p->max_groups; q++) {
+        p->cur[i] = q;
+        partition_search(p, i + 1, q == g ? g + 1 : g);
+    }
+}
+
+/* The best partition of leaf node li into at most max_groups groups; its cost saving (0: none)
+ * and, in p->best, each item's group. */
+static float leaf_partition(const Collapse *c, int li, int max_groups, Partition *p)
+{
+    const BNode *leaf = &c->bn[li];
+    int first = -1 - leaf->a;
+    p->refs = &c->refs[first];
+    p->m = leaf->b;
+    p->tris = c->ids[first] >= 0;
+    p->max_groups = max_groups;
+    if (p->m < 2 || p->m > MAX_LEAF)
+        return 0.0f;
+    float whole = box4_area(&leaf->box) * leaf_cost(p->m, p->tris ? p->m : 0);
+    p->best_cost = whole;
+    partition_search(p, 0, 0);
+    return whole - p->best_cost;
+}
+
+/* Cuts leaf node li by p->best: its items reordered group by group, the node turned into a
+ * chain of inner nodes (group 0 | rest, group 1 | rest, ...) that the root's collapse opens. */
+static void leaf_cut(Collapse *c, int li, const Partition *p)
+{
+    int first = -1 - c->bn[li].a, m = p->m, groups = 0;
+    Ref refs[MAX_LEAF];
+    int32_t ids[MAX_LEAF];
+    int start[MAX_LEAF + 1];
+    for (int i = 0; i < m; i++)
+        groups = p->best[i] + 1 > groups ? p->best[i] + 1 : groups;
+    int at = 0;
+    for (int q = 0; q < groups; q++) {
+        start[q] = at;
+        for (int i = 0; i < m; i++)
+            if (p->best[i] == q) {
+                refs[at] = c->refs[first + i];
+                ids[at++] = c->ids[first + i];
+            }
+    }
+    start[groups] = m;
+    memcpy(&c->refs[first], refs, sizeof *refs * (size_t)m);
+    memcpy(&c->ids[first], ids, sizeof *ids * (size_t)m);
+    /* from the last group back: each chain node holds group q and the rest */
+    int rest = -1;
+    for (int q = groups - 1; q >= 0; q--) {
+        BNode leaf;
+        leaf.box = box4_empty();
+        for (int i = start[q]; i < start[q + 1]; i++)
+            box4_grow(&leaf.box, c->refs[first + i].lo, c->refs[first + i].hi);
+        leaf.a = -1 - (first + start[q]);
+        leaf.b = start[q + 1] - start[q];
+        int li_q = c->bn_count++;
+        c->bn[li_q] = leaf;
+        if (rest < 0) {
+            rest = li_q;
+            continue;
+        }
+        BNode inner;
+        inner.box = leaf.box;
+        box4_grow(&inner.box, c->bn[rest].box.lo, c->bn[rest].box.hi);
+        inner.a = li_q;
+        inner.b = rest;
+        int in_q = q == 0 ? li : c->bn_count++;
+        c->bn[in_q] = inner;
+        rest = in_q;
+    }
+}
+
+/* With only leaves in the root's n slots: cuts the leaf whose best partition saves the most;
+ * 0 when none saves anything. */
+static int root_refine(Collapse *c, const int *slot, int n)
+{
+    Partition p, best_p;
+    float best_gain = 0.0f;
+    int best_leaf = -1;
+    for (int k = 0; k < n; k++) {
+        float gain = leaf_partition(c, slot[k], WIDTH - n + 1, &p);
+        if (gain > best_gain) {
+            best_gain = gain;
+            best_leaf = slot[k];
+            best_p = p;
+        }
+    }
+    if (best_leaf < 0)
+        return 0;
+    leaf_cut(c, best_leaf, &best_p);
+    return 1;
+}
+
 /* Fills wide node w with the (up to 8) descendants of binary node bi: the child with the
  * largest area is opened until 8 slots are used or only leaves are left. A leaf slot gets its
  * kind and count in ref and, until the blocks are laid out, its range start in pad. */
-static int collapse(Collapse *c, const int32_t *ids, int bi, int w, int depth)
+static int collapse(Collapse *c, int bi, int w, int depth)
 {
     int slot[WIDTH], n = 0;
     if (depth > c->depth)
         c->depth = depth;
+    if (depth == 1 && is_leaf(&c->bn[bi]))
+        root_refine(c, &bi, 1); /* a root that is one leaf: into up to 8 slots */
     if (is_leaf(&c->bn[bi])) {
         slot[n++] = bi;
     } else {
@@ -474,8 +618,10 @@ static int collapse(Collapse *c, const int32_t *ids, int bi, int w, int depth)
                     best = k;
                 }
             }
-            if (best < 0)
+            if (best < 0 && !(depth == 1 && root_refine(c, slot, n)))
                 break;
+            if (best < 0)
+                continue; /* a leaf became a chain of inner nodes */
             int open = slot[best];
             slot[best] = c->bn[open].a;
             slot[n++] = c->bn[open].b;
@@ -492,7 +638,7 @@ static int collapse(Collapse *c, const int32_t *ids, int bi, int w, int depth)
         inner[k] = -1;
         if (is_leaf(s)) {
             int first = -1 - s->a;
-            wn->ref[k] = REF_LEAF(ids[first] >= 0 ? KIND_TRIS : KIND_OTHERS, 0, s->b);
+            wn->ref[k] = REF_LEAF(c->ids[first] >= 0 ? KIND_TRIS : KIND_OTHERS, 0, s->b);
             wn->pad[k] = (uint32_t)first;
         } else {
             int id = c->count < MAX_NODES ? wide_new(c) : -1;
@@ -504,7 +650,7 @@ static int collapse(Collapse *c, const int32_t *ids, int bi, int w, int depth)
         }
     }
     for (int k = 0; k < n; k++)
-        if (inner[k] >= 0 && collapse(c, ids, slot[k], inner[k], depth + 1) < 0)
+        if (inner[k] >= 0 && collapse(c, slot[k], inner[k], depth + 1) < 0)
             return -1;
     return 0;
 }
@@ -723,7 +869,7 @@ RfStatus rf_bvh_build(RfBvh *bvh, const RfBvhDesc *desc)
     size_t total = (size_t)top.count;
     for (int i = 0; i < tl.count; i++)
         total += (size_t)tl.tasks[i].buf.count;
-    all = malloc(sizeof *all * total);
+    all = malloc(sizeof *all * (total + ROOT_EXTRA));
     if (!all)
         goto done;
     memcpy(all, top.nodes, sizeof *all * (size_t)top.count);
@@ -746,7 +892,10 @@ RfStatus rf_bvh_build(RfBvh *bvh, const RfBvhDesc *desc)
     }
     /* 8-wide nodes, leaves still as ranges of ids[] */
     c.bn = all;
-    if (wide_new(&c) < 0 || collapse(&c, b.ids, 0, 0, 1) < 0)
+    c.bn_count = (int)total;
+    c.refs = b.refs;
+    c.ids = b.ids;
+    if (wide_new(&c) < 0 || collapse(&c, 0, 0, 1) < 0)
         goto done;
     free(b.refs); /* not needed any more: make room for the blocks */
     b.refs = NULL;
