@@ -1,4 +1,7 @@
 /* Vectors and matrices: hand-derived values and identities over many random inputs. */
+#include <float.h>
+#include <string.h>
+
 #include "refray/mat.h"
 #include "refray/vec.h"
 #include "rf_test.h"
@@ -140,6 +143,34 @@ static void t_mat_det_by_hand(void)
     RF_CHECK_NEAR(inv.m[0][2], -3.0 / 6, 1e-15, 0);
 }
 
+/* rf_min_num / rf_max_num give the C library's fmin / fmax bit for bit (they replace its calls in
+ * the sphere test, whose roots must not change): signed zeros both ways, NaNs, infinities,
+ * subnormals and random values. */
+static void t_min_max_num(void)
+{
+    const double special[] = {0.0, -0.0, 1.0, -1.0, 0x1p-1074, -0x1p-1074, 0x1p-1022, DBL_MAX, -DBL_MAX,
+                              INFINITY, -INFINITY, NAN, -NAN, 1.5, 1.5 + 0x1p-52};
+    enum { NS = sizeof special / sizeof special[0] };
+    double vals[NS + 200];
+    RfTestRng r = {21};
+    for (int i = 0; i < NS; i++)
+        vals[i] = special[i];
+    for (int i = NS; i < NS + 200; i++)
+        vals[i] = i % 3 ? rf_test_uniform(&r, -4, 4) : vals[i - 1]; /* ties too */
+    int bad = 0;
+    for (int i = 0; i < NS + 200; i++)
+        for (int j = 0; j < NS + 200; j++) {
+            double x = vals[i], y = vals[j];
+            double got[2] = {rf_min_num(x, y), rf_max_num(x, y)}, want[2] = {fmin(x, y), fmax(x, y)};
+            for (int k = 0; k < 2; k++) {
+                rf_test_checks++;
+                if (memcmp(&got[k], &want[k], sizeof got[k]) != 0 && !(isnan(got[k]) && isnan(want[k])) && bad++ < 5)
+                    rf_test_fail(__FILE__, __LINE__, "%s(%a, %a) = %a, the library gives %a", k ? "max" : "min", x,
+                                 y, got[k], want[k]);
+            }
+        }
+}
+
 const RfTest rf_tests_vecmat[] = {
     {"vec_basics", t_vec_basics},
     {"vec_cross_precision", t_cross_precision},
@@ -147,5 +178,6 @@ const RfTest rf_tests_vecmat[] = {
     {"mat_inverse_identities", t_mat_inverse_identities},
     {"mat_singular", t_mat_singular},
     {"mat_det_by_hand", t_mat_det_by_hand},
+    {"vec_min_max_num", t_min_max_num},
     RF_TEST_END,
 };

@@ -24,6 +24,26 @@ static inline RfVec4 rf_vec4(double x, double y, double z, double w)
     RfVec4 v; v.x = x; v.y = y; v.z = z; v.w = w; return v;
 }
 
+/* fmin and fmax with the results of the C library's (glibc on x86-64: minsd/maxsd, so the
+ * second operand on a tie, which decides the sign of a zero; a NaN gives the other operand),
+ * inline: GCC calls the library for fmin/fmax unless told that no NaN or signed zero occurs. */
+static inline double rf_min_num(double x, double y)
+{
+    if (isnan(x))
+        return y;
+    if (isnan(y))
+        return x;
+    return x < y ? x : y;
+}
+static inline double rf_max_num(double x, double y)
+{
+    if (isnan(x))
+        return y;
+    if (isnan(y))
+        return x;
+    return x > y ? x : y;
+}
+
 /* a*b - c*d with one rounding error (Kahan's algorithm via fma): used where the plain form
  * cancels catastrophically, e.g. the cross product of nearly parallel vectors. */
 static inline double rf_diff_of_products(double a, double b, double c, double d)

@@ -129,16 +129,21 @@ typedef struct {
     int lo[3], hi[3]; /* rows of RfBvhNode.b for the near and the far plane of each axis */
 } NodeRay;
 
+static inline void node_axis(const RfBvhRay *r, NodeRay *nr, int a)
+{
+    for (int s = 0; s < 2; s++) {
+        nr->org[s][a] = _mm256_set1_ps(r->org[s][a]);
+        nr->inv[s][a] = _mm256_set1_ps(r->inv[s][a]);
+    }
+    nr->lo[a] = 2 * a + r->near_hi[a];
+    nr->hi[a] = 2 * a + 1 - r->near_hi[a];
+}
+
 static inline void node_ray(const RfBvhRay *r, NodeRay *nr)
 {
-    for (int a = 0; a < 3; a++) {
-        for (int s = 0; s < 2; s++) {
-            nr->org[s][a] = _mm256_set1_ps(r->org[s][a]);
-            nr->inv[s][a] = _mm256_set1_ps(r->inv[s][a]);
-        }
-        nr->lo[a] = 2 * a + r->near_hi[a];
-        nr->hi[a] = 2 * a + 1 - r->near_hi[a];
-    }
+    node_axis(r, nr, 0); /* written out: the compiler did not unroll the loop over the axes */
+    node_axis(r, nr, 1);
+    node_axis(r, nr, 2);
 }
 
 static inline unsigned node_test_avx(const RfBvhNode *n, const NodeRay *nr, __m256 tmin, __m256 tmax, float *tn)

@@ -39,24 +39,29 @@ static int solve_quadratic(double a, double bh, double c, double dq, double t[2]
         return 1;
     }
     double r1 = q / a, r2 = c / q;
-    t[0] = fmin(r1, r2);
-    t[1] = fmax(r1, r2);
+    t[0] = rf_min_num(r1, r2);
+    t[1] = rf_max_num(r1, r2);
     return 1;
 }
 
 /* <f,f> - r^2 with error-free products and sums (Ogita, Rump, Oishi 2005, Dot2): accurate to
  * about one rounding even when the origin lies near the sphere and the terms cancel. */
+static inline void add_square(double h, double sgn, double *s, double *e)
+{
+    double p = sgn * (h * h);
+    double pe = sgn * fma(h, h, -(h * h)); /* exact error of the square */
+    double q = *s + p, z = q - *s;         /* TwoSum(s, p) */
+    *e += ((*s - (q - z)) + (p - z)) + pe;
+    *s = q;
+}
+
 static double dot_minus_square(RfVec3 f, double r)
 {
-    double h[4] = {f.x, f.y, f.z, r}, sgn[4] = {1.0, 1.0, 1.0, -1.0};
-    double s = 0.0, e = 0.0;
-    for (int i = 0; i < 4; i++) {
-        double p = sgn[i] * (h[i] * h[i]);
-        double pe = sgn[i] * fma(h[i], h[i], -(h[i] * h[i])); /* exact error of the square */
-        double q = s + p, z = q - s;                          /* TwoSum(s, p) */
-        e += ((s - (q - z)) + (p - z)) + pe;
-        s = q;
-    }
+    double s = 0.0, e = 0.0; /* four steps written out: the signs are constants then */
+    add_square(f.x, 1.0, &s, &e);
+    add_square(f.y, 1.0, &s, &e);
+    add_square(f.z, 1.0, &s, &e);
+    add_square(r, -1.0, &s, &e);
     return s + e;
 }
 
