@@ -57,7 +57,8 @@ typedef struct {
     double time;
     RfMotionState *motion; /* the thread's, set to time */
     RfPathLog *log;        /* NULL, except when explaining an invalid sample */
-    const RfSampleKeys *lens; /* the lens dimension's keys of this pixel (NULL: drawn per sample) */
+    const double *lens_uv;    /* this sample's lens point in [0,1)^2, drawn with the pixel's others
+                                 (NULL: drawn per sample) */
 } RfPathSample;
 
 

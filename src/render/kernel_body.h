@@ -356,14 +356,12 @@ static RfRgb RF_KNAME(camera_sample)(const RfKernelJob *job, double px, double p
     const RfCamera *cam = &job->camera;
     double lens[2] = {0.0, 0.0};
     if (RF_ON(RF_K_LENS) && cam->aperture_radius > 0.0) {
-        double uv[2];
-        RfSampleKeys own;
-        const RfSampleKeys *keys = ps->lens;
-        if (!keys) {
-            own = rf_sample_keys(ps->sampler, ps->pixel, RF_DIM_LENS, job->seed);
-            keys = &own;
+        double own[2];
+        const double *uv = ps->lens_uv;
+        if (!uv) {
+            rf_sample_2d(ps->sampler, ps->k, ps->n, ps->pixel, RF_DIM_LENS, job->seed, own);
+            uv = own;
         }
-        rf_sample_2d_keyed(keys, ps->k, ps->n, uv);
         rf_warp_disk(uv[0], uv[1], &lens[0], &lens[1]);
     }
     if (RF_ON(RF_K_MOTION) && ps->motion) {
@@ -390,7 +388,6 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
         for (int x = tile.x0; x < tile.x1; x++) {
             RfPathSample ps = {(uint64_t)y * (uint64_t)job->width + (uint64_t)x, 0, (uint32_t)n, job->sampler,
                                job->shutter_open, job->motion ? job->motion[thread] : NULL, job->trace_log, NULL};
-            RfSampleKeys lens; /* ps.lens, when the pixel takes several samples through a lens */
             RfRgb sum = rf_rgb(0, 0, 0);
             if (n == 1) {
                 if (RF_ON(RF_K_LENS | RF_K_MOTION) && (cam->aperture_radius > 0.0 || job->moving)) {
@@ -404,16 +401,23 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
             } else {
                 RfRgb wsum_c = rf_rgb(0, 0, 0), sq = rf_rgb(0, 0, 0);
                 double wsum = 0.0;
-                /* the pixel's keys of the pixel position and the lens, once for its n samples */
+                /* the pixel's keys of the pixel position and the lens, once for its n samples,
+                 * whose points are drawn a run at a time (Sobol: four in SIMD lanes) */
+                int through_lens = RF_ON(RF_K_LENS) && cam->aperture_radius > 0.0;
                 RfSampleKeys pos = rf_sample_keys(job->sampler, ps.pixel, RF_DIM_PIXEL, job->seed);
-                if (RF_ON(RF_K_LENS) && cam->aperture_radius > 0.0) {
-                    lens = rf_sample_keys(job->sampler, ps.pixel, RF_DIM_LENS, job->seed);
-                    ps.lens = &lens;
-                }
+                RfSampleKeys lens = through_lens ? rf_sample_keys(job->sampler, ps.pixel, RF_DIM_LENS, job->seed) : pos;
+                double pos_uv[16][2], lens_uv[16][2];
                 for (int k = 0; k < n; k++) {
-                    double s[2];
+                    int j = k % 16;
+                    if (j == 0) {
+                        uint32_t run = n - k < 16 ? (uint32_t)(n - k) : 16;
+                        rf_sample_2d_keyed_run(&pos, (uint32_t)k, run, (uint32_t)n, pos_uv);
+                        if (through_lens)
+                            rf_sample_2d_keyed_run(&lens, (uint32_t)k, run, (uint32_t)n, lens_uv);
+                    }
+                    const double *s = pos_uv[j];
                     ps.k = (uint32_t)k;
-                    rf_sample_2d_keyed(&pos, (uint32_t)k, (uint32_t)n, s);
+                    ps.lens_uv = through_lens ? lens_uv[j] : NULL;
                     if (job->filter_box) {
                         RfRgb c = RF_KNAME(camera_sample)(job, x + s[0], y + s[1], &ps, st, shadow_cache);
                         sum = rf_rgb_add(sum, c);
