@@ -256,10 +256,54 @@ static void t_errors(void)
     tmp_close(&t);
 }
 
+/* --process: every row timed as whole `refray render` processes (the anchors are timed so); the
+ * errors are those of the in-process run (the processes write the same images: a difference would
+ * print a warning), the times include a process's start and its EXR, and no temporary file stays. */
+static void t_process(void)
+{
+    TmpDir t;
+    if (!tmp_open(&t))
+        return;
+    char args[768], csv[2][128];
+    CsvRow rows[2][8];
+    int rc, n[2], before = rf_test_failed_checks;
+    const char *out = "";
+    for (int process = 0; process < 2; process++) {
+        snprintf(csv[process], sizeof csv[process], "%s/P%d.csv", t.dir, process);
+        snprintf(args, sizeof args,
+                 "scenes/soft.rf --width 24 --height 24 --spp 1,3 --samplers sobol/4,stratified,adaptive --runs 1 "
+                 "--ref-samples 16 --quiet --csv %s %s 2>&1",
+                 csv[process], process ? "--process" : "");
+        char cmd[2048];
+        snprintf(cmd, sizeof cmd, "TMPDIR=%s %s bench %s", t.dir, rf_test_bin(), args);
+        out = rf_test_run(cmd, &rc);
+        RF_CHECK_EQ_INT(rc, 0);
+        RF_CHECK(strstr(out, process ? "seconds: whole `refray render` processes, EXR written"
+                                     : "seconds: the render call") != NULL);
+        RF_CHECK(strstr(out, "warning") == NULL);
+        n[process] = read_csv(csv[process], rows[process], 8);
+        RF_CHECK_EQ_INT(n[process], 7);
+    }
+    for (int i = 0; i < n[0] && i < n[1]; i++) {
+        RF_CHECK(strcmp(rows[0][i].strategy, rows[1][i].strategy) == 0 && rows[0][i].spp == rows[1][i].spp);
+        RF_CHECK(rows[0][i].rmse == rows[1][i].rmse && rows[0][i].relmse == rows[1][i].relmse);
+        RF_CHECK(rows[1][i].seconds > 0.0);
+    }
+    /* the temporary folder is gone: only the CSVs and references are left */
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "ls %s | grep -c refray-bench-", t.dir);
+    const char *left = rf_test_run(cmd, &rc);
+    RF_CHECK(left[0] == '0');
+    if (rf_test_failed_checks > before)
+        fprintf(stderr, "refray bench --process output:\n%s", out);
+    tmp_close(&t);
+}
+
 const RfTest rf_tests_bench[] = {
     {"bench_interpolation", t_interpolation},
     {"bench_csv", t_csv},
     {"bench_plot", t_plot},
     {"bench_errors", t_errors},
+    {"bench_process", t_process},
     RF_TEST_END,
 };

@@ -213,9 +213,10 @@ if command -v python3 >/dev/null 2>&1; then
         echo "(tools/anchor_soft.py failed:)"; sed 's/^/  /' "$tmp/anchors.txt"
     fi
 fi
+# --process: refray's rows are whole `refray render` processes writing their EXR, as the anchors'
 "$bin" bench scenes/soft.rf --ref "$ref" --samplers random,stratified,sobol,sobol/4,uniform,uniform/4,adaptive \
-    --spp "$spp" --runs "$runs" --quiet --csv out/bench/soft_bench.csv --plot out/bench/soft_bench.png $anchors
-echo "reproduce: $bin bench scenes/soft.rf --ref $ref --samplers random,stratified,sobol,sobol/4,uniform,uniform/4,adaptive --spp $spp --runs $runs [--anchors ANCHORS.csv]"
+    --spp "$spp" --runs "$runs" --process --quiet --csv out/bench/soft_bench.csv --plot out/bench/soft_bench.png $anchors
+echo "reproduce: $bin bench scenes/soft.rf --ref $ref --samplers random,stratified,sobol,sobol/4,uniform,uniform/4,adaptive --spp $spp --runs $runs --process [--anchors ANCHORS.csv]"
 echo "  python3 tools/anchor_soft.py --csv ANCHORS.csv (Mitsuba 3 and POV-Ray, whole processes)"
 
 # ---- 7. tiles and merging ----------------------------------------------------------------------

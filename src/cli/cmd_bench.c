@@ -38,7 +38,7 @@ typedef struct {
 
 typedef struct {
     const char *scene, *ref, *csv, *plot, *anchors;
-    int ref_samples, runs, threads, width, height, light_samples, seed, quiet;
+    int ref_samples, runs, threads, width, height, light_samples, seed, quiet, process;
     int strategy[MAX_STRATEGIES], nstrategies; /* RfSampler or ADAPTIVE */
     int light[MAX_STRATEGIES];                  /* NAME/L: L shadow rays per area light; 0: default */
     char name[MAX_STRATEGIES][32];              /* as written */
@@ -47,7 +47,7 @@ typedef struct {
 
 enum {
     OPT_REF = RF_OPT_ID, OPT_REF_SAMPLES, OPT_SAMPLERS, OPT_SPP, OPT_RUNS, OPT_THREADS, OPT_WIDTH, OPT_HEIGHT, OPT_SEED,
-    OPT_LIGHT_SAMPLES, OPT_CSV, OPT_PLOT, OPT_ANCHORS, OPT_QUIET
+    OPT_LIGHT_SAMPLES, OPT_CSV, OPT_PLOT, OPT_ANCHORS, OPT_QUIET, OPT_PROCESS
 };
 
 static const RfOpt bench_opts[] = {
@@ -70,6 +70,8 @@ static const RfOpt bench_opts[] = {
      "a file name ending in .png or .svg"},
     {"anchors", OPT_ANCHORS, "ANCHORS.csv", "other renderers' rows (tools/anchor_soft.py): time to relMSE 1e-3",
      NULL},
+    {"process", OPT_PROCESS, NULL, "time whole `refray render` processes writing the EXR, as the anchors are timed",
+     NULL},
     {"quiet", OPT_QUIET, NULL, "no progress lines on stderr", NULL},
     RF_OPT_TABLE_END,
 };
@@ -81,7 +83,9 @@ static const RfCommand bench_cmd = {
     "refray bench [options] SCENE\n",
     "Run time against error: each strategy at each sample count is rendered R times\n"
     "(default 3); seconds = the median wall time of the render call (tracer build\n"
-    "included, scene loading not), errors against the reference over all W x H x 3 values:\n"
+    "included, scene loading not; with --process: of the whole `refray render` process,\n"
+    "from its start to the written EXR, as tools/anchor_soft.py times other renderers),\n"
+    "errors against the reference over all W x H x 3 values:\n"
     "RMSE = sqrt(mean (x-r)^2), relMSE = mean (x-r)^2 / (r^2 + 0.01).\n",
     bench_tables,
     "Without --ref the reference is rendered with --ref-samples sobol samples and seed\n"
@@ -170,6 +174,7 @@ static int parse_args(int argc, char **argv, Args *a)
         switch (key) {
         case RF_OPT_EXIT: return p.exit_code;
         case OPT_QUIET: a->quiet = 1; break;
+        case OPT_PROCESS: a->process = 1; break;
         case OPT_REF: a->ref = v; break;
         case OPT_CSV: a->csv = v; break;
         case OPT_ANCHORS: a->anchors = v; break;
@@ -204,6 +209,13 @@ static int cmp_double(const void *x, const void *y)
     return (a > b) - (a < b);
 }
 
+/* The median of t[0..n). */
+static double median(double *t, int n)
+{
+    qsort(t, (size_t)n, sizeof t[0], cmp_double);
+    return n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
+}
+
 /* Renders runs times: *seconds = the median time of the rf_render call, *img and *st those of the
  * first run (the same seed gives the same image every run; a difference is reported). */
 static RfStatus render_measured(const RfScene *scene, const RfRenderOptions *opt, int runs, double *seconds,
@@ -227,9 +239,56 @@ static RfStatus render_measured(const RfScene *scene, const RfRenderOptions *opt
             rf_image_free(&again);
         }
     }
-    qsort(t, (size_t)runs, sizeof t[0], cmp_double);
-    *seconds = runs % 2 ? t[runs / 2] : 0.5 * (t[runs / 2 - 1] + t[runs / 2]);
+    *seconds = median(t, runs);
     return RF_OK;
+}
+
+/* --process: runs `refray render` (this executable) with the row's settings runs times, each
+ * writing out_exr; *seconds = the median wall time from fork to exit. The image is the
+ * in-process render's (the same settings and seed give the same image; measure_all compares
+ * the first process's EXR with it). Returns 0, or -1 when a process could not run or failed. */
+static int time_processes(const Args *a, const RfRenderOptions *opt, const char *sampler, const char *out_exr,
+                          double *seconds)
+{
+    char w[16], h[16], n[16], seed[24], threads[16], light[16], depth[16];
+    snprintf(w, sizeof w, "%d", opt->width);
+    snprintf(h, sizeof h, "%d", opt->height);
+    snprintf(n, sizeof n, "%d", opt->samples);
+    snprintf(seed, sizeof seed, "%llu", (unsigned long long)opt->seed);
+    snprintf(threads, sizeof threads, "%d", opt->threads);
+    snprintf(light, sizeof light, "%d", opt->light_samples);
+    snprintf(depth, sizeof depth, "%d", opt->adaptive_depth);
+    char *argv[32];
+    int k = 0;
+    const char *fixed[] = {"refray", "render", a->scene, "-o", out_exr, "--quiet", "--width", w, "--height", h,
+                           "--samples", n, "--seed", seed, "--sampler", sampler};
+    for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
+        argv[k++] = (char *)fixed[i];
+    if (opt->threads > 0)
+        argv[k++] = "--threads", argv[k++] = threads;
+    if (opt->light_samples > 0)
+        argv[k++] = "--light-samples", argv[k++] = light;
+    if (opt->adaptive)
+        argv[k++] = "--adaptive-depth", argv[k++] = depth;
+    argv[k] = NULL;
+    double t[MAX_RUNS];
+    for (int r = 0; r < a->runs; r++) {
+        fflush(NULL);
+        double t0 = now();
+        pid_t pid = fork();
+        if (pid == 0) {
+            execv("/proc/self/exe", argv);
+            _exit(127);
+        }
+        int status = 0;
+        if (pid < 0 || waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+            fprintf(stderr, "refray bench: `refray render %s ... --sampler %s` failed\n", a->scene, sampler);
+            return -1;
+        }
+        t[r] = now() - t0;
+    }
+    *seconds = median(t, a->runs);
+    return 0;
 }
 
 /* RMSE and relMSE of img against ref (rf_diff_images: the same definitions); 0 on a mismatch. */
@@ -463,10 +522,11 @@ static int write_plot(const Args *a, const char *title, const Row *rows, int n, 
     gp_quoted(gp, a->plot);
     fprintf(gp, "\nset title ");
     gp_quoted(gp, title);
-    fprintf(gp, "\nset xlabel 'seconds (median wall time of the render)'\nset ylabel 'relMSE'\n"
+    fprintf(gp, "\nset xlabel 'seconds (median wall time of the %s)'\nset ylabel 'relMSE'\n"
                 "set logscale xy\nset grid\nset key outside right top\nset format x '%%g'\n"
                 "set yrange [*<%g:*]\n"
-                "set format y '%%.0e'\n", TARGET / 3);
+                "set format y '%%.0e'\n",
+            a->process ? "whole process; the anchors also" : "render; the anchors: whole process", TARGET / 3);
     plot_groups(dat, gp, dat_path, rows, n, 0, &block);
     plot_groups(dat, gp, dat_path, anchors, na, 1, &block);
     fprintf(gp, "%s%g with lines dt 3 lw 1.5 lc rgb '#808080' title 'relMSE " TARGET_TEXT "'\n",
@@ -582,10 +642,34 @@ static int get_reference(const Args *a, const RfScene *scene, RfRenderOptions op
     return 0;
 }
 
-/* Every strategy at every sample count (adaptive: at depths 1..3): rows[], their count in *n.
- * Exit code. */
-static int measure_all(const Args *a, const RfScene *scene, RfRenderOptions opt, const RfImage *ref, Row *rows,
-                       int *n)
+/* --process: a row's time from whole processes writing tmp_exr, whose first image must be img
+ * bit for bit. Exit code. */
+static int process_row(const Args *a, const RfRenderOptions *opt, const char *sampler, const char *tmp_exr,
+                       const RfImage *img, double *seconds)
+{
+    char err[1024];
+    RfImage back;
+    if (time_processes(a, opt, sampler, tmp_exr, seconds) != 0)
+        return RF_EXIT_FAIL;
+    if (rf_exr_read(tmp_exr, &back, err, sizeof err) != RF_OK) {
+        fprintf(stderr, "refray bench: %s\n", err);
+        return RF_EXIT_FILE;
+    }
+    int same = back.width == img->width && back.height == img->height && back.channels >= 3;
+    for (size_t i = 0; same && i < (size_t)img->width * img->height; i++)
+        same = memcmp(&back.data[i * back.channels], &img->data[3 * i], 3 * sizeof(float)) == 0;
+    rf_image_free(&back);
+    remove(tmp_exr);
+    if (!same)
+        fprintf(stderr, "refray bench: warning: `refray render --sampler %s` wrote another image than the bench's "
+                        "render with the same settings\n", sampler);
+    return 0;
+}
+
+/* Every strategy at every sample count (adaptive: at depths 1..3): rows[], their count in *n;
+ * --process: each row's processes write tmp_exr. Exit code. */
+static int measure_rows(const Args *a, const RfScene *scene, RfRenderOptions opt, const RfImage *ref, Row *rows,
+                        int *n, const char *tmp_exr)
 {
     int total = 0;
     for (int s = 0; s < a->nstrategies; s++)
@@ -603,11 +687,20 @@ static int measure_all(const Args *a, const RfScene *scene, RfRenderOptions opt,
                 opt.adaptive_depth = k + 1, opt.samples = 1;
             else
                 opt.sampler = a->strategy[s], opt.samples = a->spp[k];
-            RfStatus rs = render_measured(scene, &opt, a->runs, &r->seconds, &img, &st);
+            /* --process: the image once here, the times from whole processes */
+            RfStatus rs = render_measured(scene, &opt, a->process ? 1 : a->runs, &r->seconds, &img, &st);
             if (rs != RF_OK) {
                 fprintf(stderr, "refray bench: %s: %s: %s\n", a->scene, a->name[s],
                         rf_status_str(rs));
                 return RF_EXIT_FAIL;
+            }
+            if (a->process) {
+                int rc = process_row(a, &opt, adaptive ? "adaptive" : rf_sampler_name(opt.sampler), tmp_exr, &img,
+                                     &r->seconds);
+                if (rc) {
+                    rf_image_free(&img);
+                    return rc;
+                }
             }
             snprintf(r->renderer, sizeof r->renderer, "refray");
             snprintf(r->strategy, sizeof r->strategy, "%s", a->name[s]);
@@ -627,6 +720,26 @@ static int measure_all(const Args *a, const RfScene *scene, RfRenderOptions opt,
         }
     }
     return 0;
+}
+
+/* measure_rows, with --process in a temporary folder of its own. Exit code. */
+static int measure_all(const Args *a, const RfScene *scene, RfRenderOptions opt, const RfImage *ref, Row *rows,
+                       int *n)
+{
+    char tmp_dir[64] = "", tmp_exr[96] = "";
+    if (a->process) { /* the processes' images, each removed after its row */
+        const char *base = getenv("TMPDIR");
+        snprintf(tmp_dir, sizeof tmp_dir, "%s/refray-bench-XXXXXX", base && strlen(base) < 40 ? base : "/tmp");
+        if (!mkdtemp(tmp_dir)) {
+            fprintf(stderr, "refray bench: cannot make a temporary folder %s\n", tmp_dir);
+            return RF_EXIT_FILE;
+        }
+        snprintf(tmp_exr, sizeof tmp_exr, "%s/render.exr", tmp_dir);
+    }
+    int rc = measure_rows(a, scene, opt, ref, rows, n, tmp_exr);
+    if (a->process)
+        rmdir(tmp_dir);
+    return rc;
 }
 
 int rf_cmd_bench(int argc, char **argv)
@@ -666,8 +779,9 @@ int rf_cmd_bench(int argc, char **argv)
     RfRenderOptions opt = rf_render_options_default();
     opt.width = w, opt.height = h, opt.threads = a.threads, opt.light_samples = a.light_samples;
     opt.seed = (uint64_t)a.seed;
-    printf("refray bench: %s %dx%d, median of %d run%s, seed %d\n", a.scene, w, h, a.runs, a.runs == 1 ? "" : "s",
-           a.seed);
+    printf("refray bench: %s %dx%d, median of %d run%s, seed %d; seconds: %s\n", a.scene, w, h, a.runs,
+           a.runs == 1 ? "" : "s", a.seed,
+           a.process ? "whole `refray render` processes, EXR written" : "the render call");
     RfImage ref = {0, 0, 0, NULL};
     rc = get_reference(&a, &scene, opt, w, h, &ref);
     if (rc == 0)
