@@ -397,10 +397,9 @@ size_t rf_tracer_bytes(const RfTracer *t)
 /* max_i |v_i|, a NaN coordinate ignored */
 static double max_abs3(RfVec3 v)
 {
-    double m = 0.0, c[3] = {fabs(v.x), fabs(v.y), fabs(v.z)};
-    for (int i = 0; i < 3; i++)
-        m = c[i] > m ? c[i] : m;
-    return m;
+    double m = fabs(v.x) > 0.0 ? fabs(v.x) : 0.0; /* a NaN coordinate is passed over */
+    m = fabs(v.y) > m ? fabs(v.y) : m;
+    return fabs(v.z) > m ? fabs(v.z) : m;
 }
 
 /* ---- intersection ---- */
@@ -821,27 +820,33 @@ int rf_tracer_intersect_at(const RfTracer *t, RfRay ray, const RfMotionState *ms
      * barycentric coordinates, a plane's along its normal. Their errors are a few ulps of the
      * coordinates they are made of. A cone's quadratic and an instance's matrices lose more. */
     const RfPrimitive *pr = &s->prims[q.item.prim];
-    double so = max_abs3(ray.origin);
-    out->scale = max_abs3(out->point);
-    out->scale = so > out->scale ? so : out->scale;
+    int reprojected = 0; /* else the scale of the point and the origin */
     if (!q.instanced && pr->type == RF_PRIM_SPHERE) {
         RfVec3 v = rf_vec3_sub(out->point, pr->u.sphere.center);
         double len = rf_vec3_length(v);
         if (len > 0.0) {
             out->point = rf_vec3_add(pr->u.sphere.center, rf_vec3_scale(v, pr->u.sphere.radius / len));
             double sc = max_abs3(pr->u.sphere.center) + pr->u.sphere.radius;
-            out->scale = fmax(max_abs3(out->point), sc);
+            out->scale = rf_max_num(max_abs3(out->point), sc);
+            reprojected = 1;
         }
     } else if (!q.instanced && q.item.sub >= 0 && (pr->type == RF_PRIM_TRIANGLE || pr->type == RF_PRIM_POLYGON)) {
         RfTriangle tri = q.tri ? *q.tri : item_triangle(t, q.item); /* the BVH block's copy: the same doubles */
         out->point = rf_vec3_add(rf_vec3_add(rf_vec3_scale(tri.p1, q.hit.l[0]), rf_vec3_scale(tri.p2, q.hit.l[1])),
                                  rf_vec3_scale(tri.p3, q.hit.l[2]));
-        out->scale = fmax(max_abs3(tri.p1), fmax(max_abs3(tri.p2), max_abs3(tri.p3)));
+        out->scale = rf_max_num(max_abs3(tri.p1), rf_max_num(max_abs3(tri.p2), max_abs3(tri.p3)));
+        reprojected = 1;
     } else if (!q.instanced && pr->type == RF_PRIM_PLANE) {
         RfVec3 n = pr->u.plane.normal; /* any length */
         double nn = rf_vec3_dot(n, n);
         out->point = rf_vec3_sub(out->point, rf_vec3_scale(n, (rf_vec3_dot(n, out->point) - pr->u.plane.offset) / nn));
-        out->scale = fmax(max_abs3(out->point), fabs(pr->u.plane.offset) / sqrt(nn));
+        out->scale = rf_max_num(max_abs3(out->point), fabs(pr->u.plane.offset) / sqrt(nn));
+        reprojected = 1;
+    }
+    if (!reprojected) {
+        double so = max_abs3(ray.origin);
+        out->scale = max_abs3(out->point);
+        out->scale = so > out->scale ? so : out->scale;
     }
     if (pr->type == RF_PRIM_CONE)
         out->scale *= RF_RAY_OFFSET_CONE;
