@@ -73,11 +73,15 @@ typedef enum {
     RF_TRIANGLE_WATERTIGHT /* Woop, Benthin, Wald 2013 (JCGT 2(1)), with exact edge signs */
 } RfTriangleMethod;
 
-/* The watertight test's per-ray set-up (axis permutation and shear), computed once per ray. */
+/* The watertight test's per-ray set-up (axis permutation and shear), computed once per ray.
+ * lanes: the permutation as 32-bit lane indices of (x, y, z) doubles for the vector kernel;
+ * scalar: 1 makes the test use its scalar kernel (the same answers; the tests compare them). */
 typedef struct {
     RfRay ray;
     int kx, ky, kz;
     double sx, sy, sz;
+    int lanes[8];
+    int scalar;
 } RfWatertightRay;
 RfWatertightRay rf_watertight_ray(RfRay ray);
 

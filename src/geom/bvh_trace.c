@@ -83,6 +83,7 @@ static void tri_setup(const RfBvh *bvh, RfBvhRay *r)
 {
     const double o[3] = {r->ray.origin.x, r->ray.origin.y, r->ray.origin.z};
     r->wr = rf_watertight_ray(r->ray);
+    r->wr.scalar = bvh->scalar; /* the scalar kernels throughout: the tests compare the two */
     r->fo[0] = (float)o[r->wr.kx];
     r->fo[1] = (float)o[r->wr.ky];
     r->fo[2] = (float)o[r->wr.kz];

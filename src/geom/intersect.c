@@ -2,6 +2,7 @@
 #include "refray/intersect.h"
 
 #include <math.h>
+#include <string.h>
 
 #if defined(__AVX__)
 #include <immintrin.h>
@@ -310,6 +311,12 @@ RfWatertightRay rf_watertight_ray(RfRay ray)
     w.sy = comp(ray.dir, w.ky) / dz;
     w.sz = 1.0 / dz;
 #endif
+    /* the vector kernel's lanes (kx, ky, kz, kz) as 32-bit halves, by kz and whether kx, ky swapped */
+    static const int lanes[3][2][8] = {{{2, 3, 4, 5, 0, 1, 0, 1}, {4, 5, 2, 3, 0, 1, 0, 1}},
+                                       {{4, 5, 0, 1, 2, 3, 2, 3}, {0, 1, 4, 5, 2, 3, 2, 3}},
+                                       {{0, 1, 2, 3, 4, 5, 4, 5}, {2, 3, 0, 1, 4, 5, 4, 5}}};
+    memcpy(w.lanes, lanes[w.kz][w.kx != (w.kz + 1) % 3], sizeof w.lanes);
+    w.scalar = 0;
     return w;
 }
 
@@ -353,15 +360,78 @@ static inline int watertight(const RfWatertightRay *w, const RfTriangle *tri, do
     return 1;
 }
 
+#if defined(__AVX2__) && defined(__FMA__)
+/* watertight() with the three vertices in SIMD lanes: every lane makes the scalar kernel's
+ * operations in its order (the vertex minus the origin, the shear, the two products of an edge
+ * function, their difference or the difference of their fma-recovered errors, the products of
+ * t's numerator), so the answers are the same bits; det and the numerator are summed in the
+ * scalar order. */
+static inline int watertight_avx(const RfWatertightRay *w, const RfTriangle *tri, double e[3], double *det,
+                                 double *t)
+{
+    const __m256d o = _mm256_set_pd(0.0, w->ray.origin.z, w->ray.origin.y, w->ray.origin.x);
+    const __m256i lanes = _mm256_loadu_si256((const __m256i *)w->lanes);
+    const __m256d shear = _mm256_set_pd(0.0, 0.0, w->sy, w->sx);
+    /* p1 and p2 read a fourth double of the triangle (lane 3, never used); p3 is masked */
+    __m256d pa = _mm256_sub_pd(_mm256_loadu_pd(&tri->p1.x), o);
+    __m256d pb = _mm256_sub_pd(_mm256_loadu_pd(&tri->p2.x), o);
+    __m256d pc = _mm256_sub_pd(_mm256_maskload_pd(&tri->p3.x, _mm256_set_epi64x(0, -1, -1, -1)), o);
+    /* (v_kx, v_ky, v_kz, v_kz) */
+    pa = _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(pa), lanes));
+    pb = _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(pb), lanes));
+    pc = _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(pc), lanes));
+    /* (v_kx - sx v_kz, v_ky - sy v_kz, -, -) */
+    __m256d sa = _mm256_sub_pd(pa, _mm256_mul_pd(shear, _mm256_permute4x64_pd(pa, 0xAA)));
+    __m256d sb = _mm256_sub_pd(pb, _mm256_mul_pd(shear, _mm256_permute4x64_pd(pb, 0xAA)));
+    __m256d sc = _mm256_sub_pd(pc, _mm256_mul_pd(shear, _mm256_permute4x64_pd(pc, 0xAA)));
+    /* X = (ax, bx, cx, cx), Y = (ay, by, cy, cy), Z = (az, bz, cz, cz) */
+    __m256d X = _mm256_permute2f128_pd(_mm256_unpacklo_pd(sa, sb), _mm256_unpacklo_pd(sc, sc), 0x20);
+    __m256d Y = _mm256_permute2f128_pd(_mm256_unpackhi_pd(sa, sb), _mm256_unpackhi_pd(sc, sc), 0x20);
+    __m256d Z = _mm256_permute2f128_pd(_mm256_unpacklo_pd(pa, pb), _mm256_unpacklo_pd(pc, pc), 0x31);
+    /* edge i = P_x Q_y - P_y Q_x with P = (c, a, b), Q = (b, c, a): edge_function(P, Q) */
+    __m256d px = _mm256_permute4x64_pd(X, 0xD2), py = _mm256_permute4x64_pd(Y, 0xD2);
+    __m256d qx = _mm256_permute4x64_pd(X, 0xC9), qy = _mm256_permute4x64_pd(Y, 0xC9);
+    __m256d a = _mm256_mul_pd(px, qy), b = _mm256_mul_pd(py, qx);
+    __m256d exact = _mm256_sub_pd(_mm256_fmsub_pd(px, qy, a), _mm256_fmsub_pd(py, qx, b));
+    __m256d E = _mm256_blendv_pd(exact, _mm256_sub_pd(a, b), _mm256_cmp_pd(a, b, _CMP_NEQ_UQ));
+    const __m256d zero = _mm256_setzero_pd();
+    int neg = _mm256_movemask_pd(_mm256_cmp_pd(E, zero, _CMP_LT_OQ)) & 7;
+    int pos = _mm256_movemask_pd(_mm256_cmp_pd(E, zero, _CMP_GT_OQ)) & 7;
+    double ev[4], zv[4];
+    _mm256_storeu_pd(ev, E);
+    e[0] = ev[0], e[1] = ev[1], e[2] = ev[2];
+    if (neg && pos)
+        return 0;
+    *det = e[0] + e[1] + e[2];
+    if (*det == 0.0)
+        return 0;
+    _mm256_storeu_pd(zv, _mm256_mul_pd(E, _mm256_mul_pd(_mm256_set1_pd(w->sz), Z)));
+    double tt = zv[0] + zv[1] + zv[2];
+    *t = tt / *det;
+    return 1;
+}
+#endif
+
+/* The kernel the ray asks for: the vector one where the machine has it. */
+static inline int watertight_any(const RfWatertightRay *w, const RfTriangle *tri, double e[3], double *det,
+                                 double *t)
+{
+#if defined(__AVX2__) && defined(__FMA__)
+    if (!w->scalar)
+        return watertight_avx(w, tri, e, det, t);
+#endif
+    return watertight(w, tri, e, det, t);
+}
+
 int rf_watertight_t(const RfWatertightRay *w, const RfTriangle *tri, double *t)
 {
     double e[3], det;
-    return watertight(w, tri, e, &det, t);
+    return watertight_any(w, tri, e, &det, t);
 }
 
 int rf_watertight_edges(const RfWatertightRay *w, const RfTriangle *tri, double *t, double e[4])
 {
-    return watertight(w, tri, e, &e[3], t);
+    return watertight_any(w, tri, e, &e[3], t);
 }
 
 RfVec3 rf_triangle_unit_normal(const RfTriangle *tri) { return triangle_unit_normal(*tri); }
@@ -371,7 +441,7 @@ int rf_intersect_triangle_watertight(const RfWatertightRay *w, RfTriangle tri, d
                                      double t_max, RfHit *hit)
 {
     double e[4], t;
-    if (!watertight(w, &tri, e, &e[3], &t) || !in_range(t, t_min, t_max))
+    if (!watertight_any(w, &tri, e, &e[3], &t) || !in_range(t, t_min, t_max))
         return 0;
     rf_watertight_hit(&tri, t, e, NULL, hit);
     return 1;
