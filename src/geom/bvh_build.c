@@ -468,40 +468,41 @@ typedef struct {
     const Ref *refs;
     int m, tris, max_groups;
     int cur[MAX_LEAF], best[MAX_LEAF];
+    Box4 box[MAX_LEAF]; /* the groups of cur[0..i) so far: box, items and SAH cost */
+    int n[MAX_LEAF];
+    float cost[MAX_LEAF];
     float best_cost;
 } Partition;
 
-/* The SAH cost of the partition cur[0..m) into groups 0..g-1. */
-static float partition_cost(const Partition *p, int g)
-{
-    float cost = 0.0f;
-    for (int q = 0; q < g; q++) {
-        Box4 box = box4_empty();
-        int n = 0;
-        for (int i = 0; i < p->m; i++)
-            if (p->cur[i] == q) {
-                box4_grow(&box, p->refs[i].lo, p->refs[i].hi);
-                n++;
-            }
-        cost += box4_area(&box) * leaf_cost(n, p->tris ? n : 0);
-    }
-    return cost;
-}
-
-/* Every partition of items i.. given cur[0..i) in g groups (restricted growth strings). */
+/* Every partition of items i.. given cur[0..i) in g groups (restricted growth strings), best
+ * first found kept. A group's cost only grows as items join it, so a partial partition that
+ * costs as much as the best already found is cut off (branch and bound). */
 static void partition_search(Partition *p, int i, int g)
 {
+    float partial = 0.0f;
+    for (int q = 0; q < g; q++)
+        partial += p->cost[q];
+    if (!(partial < p->best_cost))
+        return;
     if (i == p->m) {
-        float c = partition_cost(p, g);
-        if (c < p->best_cost) {
-            p->best_cost = c;
-            memcpy(p->best, p->cur, sizeof p->best);
-        }
+        p->best_cost = partial;
+        memcpy(p->best, p->cur, sizeof p->best);
         return;
     }
     for (int q = 0; q <= g && q < p->max_groups; q++) {
+        Box4 box = p->box[q];
+        int n = p->n[q];
+        float cost = p->cost[q];
+        if (q == g) {
+            p->box[q] = box4_empty();
+            p->n[q] = 0;
+        }
+        box4_grow(&p->box[q], p->refs[i].lo, p->refs[i].hi);
+        p->n[q]++;
+        p->cost[q] = box4_area(&p->box[q]) * leaf_cost(p->n[q], p->tris ? p->n[q] : 0);
         p->cur[i] = q;
         partition_search(p, i + 1, q == g ? g + 1 : g);
+        p->box[q] = box, p->n[q] = n, p->cost[q] = cost;
     }
 }
 
