@@ -10,7 +10,7 @@
  * faster) and Embree's build time over refray's. Without Embree (built only when Debian's
  * libembree-dev is installed) refray's side is measured alone.
  *
- * refray's offset (1e-9 of the hit point's magnitude) puts a shadow ray's origin closer to its
+ * refray's offset (2e-15 of the hit point's coordinates) puts a shadow ray's origin closer to its
  * surface than float arithmetic resolves: Embree reports many of those rays occluded by their
  * own triangle, and stops early. A second set of shadow rays starts at P + 1e-4 N, as the
  * SCENES.md anchor does, where both agree; both sets are timed. Memory: the scene model and
