@@ -389,6 +389,39 @@ static void test_watertight_closed_mesh(void)
 
 /* ---- NFF cone / cylinder ---- */
 
+/* The tracer tests each cone with its frame computed once (rf_cone_frame) and without the
+ * normal for shadow rays: the same answers and t as rf_intersect_cone, bit for bit, and with
+ * the normal the same normal, on random cones, cylinders and rays (many near the surface). */
+static void test_cone_framed(void)
+{
+    RfTestRng rng = {31};
+    int hits = 0;
+    for (int i = 0; i < 20000; i++) {
+        RfVec3 base = v3(rf_test_uniform(&rng, -2, 2), rf_test_uniform(&rng, -2, 2), rf_test_uniform(&rng, -2, 2));
+        RfVec3 apex = rf_vec3_add(base, v3(rf_test_uniform(&rng, -2, 2), rf_test_uniform(&rng, -2, 2),
+                                           rf_test_uniform(&rng, -2, 2)));
+        double r0 = rf_test_uniform(&rng, 0, 1), r1 = i % 3 == 0 ? r0 : i % 3 == 1 ? 0.0 : rf_test_uniform(&rng, 0, 1);
+        RfCone c = {base, r0, apex, r1};
+        RfVec3 o = v3(rf_test_uniform(&rng, -4, 4), rf_test_uniform(&rng, -4, 4), rf_test_uniform(&rng, -4, 4));
+        RfVec3 on_axis = rf_vec3_add(base, rf_vec3_scale(rf_vec3_sub(apex, base), rf_test_uniform(&rng, 0, 1)));
+        RfRay r = rf_ray(o, rf_vec3_sub(on_axis, o)); /* towards a point of the axis */
+        RfConeFrame f = rf_cone_frame(c);
+        RfHit a, b, n;
+        int ha = rf_intersect_cone(r, c, 0.0, INF, &a);
+        int hb = rf_intersect_cone_framed(r, &c, &f, 0.0, INF, 0, &b);
+        int hn = rf_intersect_cone_framed(r, &c, &f, 0.0, INF, 1, &n);
+        rf_test_checks++;
+        if (ha != hb || ha != hn || (ha && (memcmp(&a.t, &b.t, sizeof a.t) != 0 || memcmp(&a.t, &n.t, sizeof a.t) != 0 ||
+                                            memcmp(&a.normal, &n.normal, sizeof a.normal) != 0))) {
+            rf_test_fail(__FILE__, __LINE__, "cone %d: rf_intersect_cone %d t %a, framed %d t %a / %d t %a", i, ha,
+                         a.t, hb, b.t, hn, n.t);
+            break;
+        }
+        hits += ha;
+    }
+    RF_CHECK(hits > 5000); /* the rays aim at the axis: most hit */
+}
+
 static void test_cone_cylinder(void)
 {
     RfCone cyl = {v3(0, 0, 0), 1.0, v3(0, 0, 2), 1.0};
@@ -788,6 +821,7 @@ const RfTest rf_tests_raytrace[] = {
     {"raytrace/watertight_closed_mesh", test_watertight_closed_mesh},
     {"raytrace/watertight_exact_edge_sign", test_watertight_exact_edge_sign},
     {"raytrace/cone_cylinder", test_cone_cylinder},
+    {"raytrace/cone_framed", test_cone_framed},
     {"raytrace/camera", test_camera},
     {"raytrace/phong", test_phong},
     {"raytrace/reflect", test_reflect},

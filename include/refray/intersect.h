@@ -122,6 +122,14 @@ typedef struct { RfVec3 base; double base_radius; RfVec3 apex; double apex_radiu
  * ray running inside the surface does not hit. normal: outward (away from the axis, tilted by
  * the slope); at a radius-0 tip it is taken along the axis. */
 int rf_intersect_cone(RfRay ray, RfCone cone, double t_min, double t_max, RfHit *hit);
+/* The numbers rf_intersect_cone derives from the cone alone on every call (unit axis k, height h,
+ * slope m; degenerate: no surface), for a caller that tests one cone many times. */
+typedef struct { RfVec3 k; double h, m; int degenerate; } RfConeFrame;
+RfConeFrame rf_cone_frame(RfCone cone);
+/* rf_intersect_cone with the cone's frame given: the same answer and t, bit for bit; with
+ * want_normal 0 the normal is left zero (an occlusion test needs none). */
+int rf_intersect_cone_framed(RfRay ray, const RfCone *cone, const RfConeFrame *frame, double t_min,
+                             double t_max, int want_normal, RfHit *hit);
 
 #ifdef __cplusplus
 }

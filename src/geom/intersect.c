@@ -470,14 +470,31 @@ int rf_intersect_triangle(RfRay ray, RfTriangle tri, RfTriangleMethod method, do
  * a t^2 + 2 bh t + c = 0 with a = |d_p|^2 - m^2 dz^2, bh = <o_p,d_p> - m dz (r_base + m oz),
  * c = |o_p|^2 - (r_base + m oz)^2. The squared equation also holds on the mirrored nappe past
  * the tip, which the axial range [0, H] excludes (radii >= 0 there). */
+RfConeFrame rf_cone_frame(RfCone cone)
+{
+    RfConeFrame f;
+    RfVec3 axis = rf_vec3_sub(cone.apex, cone.base);
+    f.h = rf_vec3_length(axis);
+    f.degenerate = !(f.h > 0.0) || (cone.base_radius == 0.0 && cone.apex_radius == 0.0);
+    f.k = rf_vec3_scale(axis, 1.0 / f.h);
+    f.m = (cone.apex_radius - cone.base_radius) / f.h;
+    return f;
+}
+
 int rf_intersect_cone(RfRay ray, RfCone cone, double t_min, double t_max, RfHit *hit)
 {
-    RfVec3 axis = rf_vec3_sub(cone.apex, cone.base);
-    double h = rf_vec3_length(axis);
-    if (!(h > 0.0) || (cone.base_radius == 0.0 && cone.apex_radius == 0.0))
+    RfConeFrame f = rf_cone_frame(cone);
+    return rf_intersect_cone_framed(ray, &cone, &f, t_min, t_max, 1, hit);
+}
+
+int rf_intersect_cone_framed(RfRay ray, const RfCone *cp, const RfConeFrame *frame, double t_min,
+                             double t_max, int want_normal, RfHit *hit)
+{
+    if (frame->degenerate)
         return 0;
-    RfVec3 k = rf_vec3_scale(axis, 1.0 / h);
-    double m = (cone.apex_radius - cone.base_radius) / h;
+    const RfCone cone = *cp;
+    const RfVec3 k = frame->k;
+    const double h = frame->h, m = frame->m;
     RfVec3 o = rf_vec3_sub(ray.origin, cone.base);
     double dz = rf_vec3_dot(ray.dir, k), oz = rf_vec3_dot(o, k);
     RfVec3 dp = rf_vec3_sub(ray.dir, rf_vec3_scale(k, dz)), op = rf_vec3_sub(o, rf_vec3_scale(k, oz));
@@ -501,13 +518,17 @@ int rf_intersect_cone(RfRay ray, RfCone cone, double t_min, double t_max, RfHit 
         double z = rf_vec3_dot(q, k);
         if (!(z >= 0.0 && z <= h))
             continue;
+        hit->t = t[i];
+        hit->l[0] = hit->l[1] = hit->l[2] = 0.0;
+        if (!want_normal) {
+            hit->normal = rf_vec3(0.0, 0.0, 0.0);
+            return 1;
+        }
         RfVec3 radial = rf_vec3_sub(q, rf_vec3_scale(k, z));
         double rl = rf_vec3_length(radial);
         /* gradient of |q_p| - (r_base + m z): the radial unit vector minus m k */
         RfVec3 n = rl > 0.0 ? rf_vec3_sub(rf_vec3_scale(radial, 1.0 / rl), rf_vec3_scale(k, m))
                             : rf_vec3_scale(k, m > 0.0 ? -1.0 : 1.0);
-        hit->t = t[i];
-        hit->l[0] = hit->l[1] = hit->l[2] = 0.0;
         hit->normal = rf_vec3_normalize(n);
         return 1;
     }

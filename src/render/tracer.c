@@ -57,6 +57,7 @@ struct RfTracer {
      * star-prisms). Polygon prim's triangle k has the corners cut[cut_first[prim] + 3 k + j]. */
     int *cut;
     size_t *cut_first;
+    RfConeFrame *cone_frames; /* per primitive, when the scene has cones: their frames, once */
 };
 
 /* ---- preparation ---- */
@@ -153,6 +154,7 @@ void rf_tracer_free(RfTracer *t)
     free(t->objects);
     free(t->cut);
     free(t->cut_first);
+    free(t->cone_frames);
     free(t);
 }
 
@@ -316,6 +318,24 @@ static RfStatus build_object(RfTracer *t, int o)
     return st;
 }
 
+/* The frames of the scene's cones (struct RfTracer), when it has any. */
+static RfStatus cone_frames(RfTracer *t)
+{
+    const RfScene *s = t->scene;
+    size_t i = 0;
+    while (i < s->prim_count && s->prims[i].type != RF_PRIM_CONE)
+        i++;
+    if (i == s->prim_count)
+        return RF_OK;
+    t->cone_frames = malloc(sizeof *t->cone_frames * s->prim_count);
+    if (!t->cone_frames)
+        return RF_ERR_NOMEM;
+    for (; i < s->prim_count; i++)
+        if (s->prims[i].type == RF_PRIM_CONE)
+            t->cone_frames[i] = rf_cone_frame(s->prims[i].u.cone);
+    return RF_OK;
+}
+
 /* The triangles of every non-convex polygon (struct RfTracer). */
 static RfStatus cut_nonconvex(RfTracer *t)
 {
@@ -360,6 +380,8 @@ RfStatus rf_tracer_create_opts(const RfScene *scene, const RfTracerOptions *opt,
     t->opt = opt ? *opt : rf_tracer_options_default();
     t->objects = calloc(scene->object_count ? scene->object_count : 1, sizeof *t->objects);
     RfStatus st = t->objects ? cut_nonconvex(t) : RF_ERR_NOMEM;
+    if (st == RF_OK)
+        st = cone_frames(t);
     if (st == RF_OK)
         st = build_level(t, 0, scene->prim_count, 1, &t->world);
     if (st != RF_OK) {
@@ -603,7 +625,9 @@ again:
         }
         break;
     case RF_PRIM_CONE: {
-        ok = rf_intersect_cone(ray, p->u.cone, t_min, t_max, &h);
+        /* a shadow query needs no normal: the hidden side is a matter of the nearest hit */
+        ok = rf_intersect_cone_framed(ray, &p->u.cone, &q->tracer->cone_frames[it.prim], t_min, t_max, !q->shadow,
+                                      &h);
         break;
     }
     default:
