@@ -408,8 +408,8 @@ static void test_cone_framed(void)
         RfConeFrame f = rf_cone_frame(c);
         RfHit a, b, n;
         int ha = rf_intersect_cone(r, c, 0.0, INF, &a);
-        int hb = rf_intersect_cone_framed(r, &c, &f, 0.0, INF, 0, &b);
-        int hn = rf_intersect_cone_framed(r, &c, &f, 0.0, INF, 1, &n);
+        int hb = rf_intersect_cone_framed(&r, &c, &f, 0.0, INF, 0, &b);
+        int hn = rf_intersect_cone_framed(&r, &c, &f, 0.0, INF, 1, &n);
         rf_test_checks++;
         if (ha != hb || ha != hn || (ha && (memcmp(&a.t, &b.t, sizeof a.t) != 0 || memcmp(&a.t, &n.t, sizeof a.t) != 0 ||
                                             memcmp(&a.normal, &n.normal, sizeof a.normal) != 0))) {

@@ -171,6 +171,23 @@ static void t_min_max_num(void)
         }
 }
 
+/* rf_next_up is nextafter(x, +inf) bit for bit: zeros, subnormals, the largest double, the
+ * infinities, NaN and random values of both signs. */
+static void t_next_up(void)
+{
+    const double special[] = {0.0, -0.0, 0x1p-1074, -0x1p-1074, 0x1p-1022, -0x1p-1022, DBL_MAX, -DBL_MAX,
+                              INFINITY, -INFINITY, 1.0, -1.0, 0x1.fffffffffffffp-1, -2.0};
+    RfTestRng r = {22};
+    for (int i = 0; i < (int)(sizeof special / sizeof special[0]) + 2000; i++) {
+        double x = i < (int)(sizeof special / sizeof special[0]) ? special[i] : rf_test_uniform(&r, -1e3, 1e3);
+        double got = rf_next_up(x), want = nextafter(x, HUGE_VAL);
+        rf_test_checks++;
+        if (memcmp(&got, &want, sizeof got) != 0)
+            rf_test_fail(__FILE__, __LINE__, "rf_next_up(%a) = %a, nextafter gives %a", x, got, want);
+    }
+    RF_CHECK(isnan(rf_next_up(NAN)));
+}
+
 const RfTest rf_tests_vecmat[] = {
     {"vec_basics", t_vec_basics},
     {"vec_cross_precision", t_cross_precision},
@@ -179,5 +196,6 @@ const RfTest rf_tests_vecmat[] = {
     {"mat_singular", t_mat_singular},
     {"mat_det_by_hand", t_mat_det_by_hand},
     {"vec_min_max_num", t_min_max_num},
+    {"vec_next_up", t_next_up},
     RF_TEST_END,
 };

@@ -128,7 +128,7 @@ typedef struct { RfVec3 k; double h, m; int degenerate; } RfConeFrame;
 RfConeFrame rf_cone_frame(RfCone cone);
 /* rf_intersect_cone with the cone's frame given: the same answer and t, bit for bit; with
  * want_normal 0 the normal is left zero (an occlusion test needs none). */
-int rf_intersect_cone_framed(RfRay ray, const RfCone *cone, const RfConeFrame *frame, double t_min,
+int rf_intersect_cone_framed(const RfRay *ray, const RfCone *cone, const RfConeFrame *frame, double t_min,
                              double t_max, int want_normal, RfHit *hit);
 
 #ifdef __cplusplus

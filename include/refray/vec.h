@@ -44,6 +44,20 @@ static inline double rf_max_num(double x, double y)
     return x > y ? x : y;
 }
 
+/* nextafter(x, +inf) without the library call: the next double above x (+0 and -0 give the
+ * smallest subnormal, +inf and NaN stay). Test vec_next_up. */
+static inline double rf_next_up(double x)
+{
+    if (x != x || x == HUGE_VAL)
+        return x;
+    if (x == 0.0)
+        return 0x1p-1074;
+    union { double d; unsigned long long u; } b;
+    b.d = x;
+    b.u += x > 0.0 ? 1 : -1ll; /* the magnitude up for x > 0, down (towards 0) for x < 0 */
+    return b.d;
+}
+
 /* a*b - c*d with one rounding error (Kahan's algorithm via fma): used where the plain form
  * cancels catastrophically, e.g. the cross product of nearly parallel vectors. */
 static inline double rf_diff_of_products(double a, double b, double c, double d)

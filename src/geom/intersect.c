@@ -484,14 +484,15 @@ RfConeFrame rf_cone_frame(RfCone cone)
 int rf_intersect_cone(RfRay ray, RfCone cone, double t_min, double t_max, RfHit *hit)
 {
     RfConeFrame f = rf_cone_frame(cone);
-    return rf_intersect_cone_framed(ray, &cone, &f, t_min, t_max, 1, hit);
+    return rf_intersect_cone_framed(&ray, &cone, &f, t_min, t_max, 1, hit);
 }
 
-int rf_intersect_cone_framed(RfRay ray, const RfCone *cp, const RfConeFrame *frame, double t_min,
+int rf_intersect_cone_framed(const RfRay *rp, const RfCone *cp, const RfConeFrame *frame, double t_min,
                              double t_max, int want_normal, RfHit *hit)
 {
     if (frame->degenerate)
         return 0;
+    const RfRay ray = *rp;
     const RfCone cone = *cp;
     const RfVec3 k = frame->k;
     const double h = frame->h, m = frame->m;

@@ -595,8 +595,10 @@ static int hit_instance(Query *q, const RfPrimitive *p, RfRay ray, double t_min,
 
 /* Intersects one item with the double-precision kernels of §3.5 at t in [t_min, t_max); on a
  * hit keeps its details in q and returns 1 with *t. */
-static int hit_item(Query *q, Item it, RfRay ray, const RfWatertightRay *wr, double t_min, double t_max, double *t)
+static int hit_item(Query *q, Item it, const RfRay *rp, const RfWatertightRay *wr, double t_min, double t_max,
+                    double *t)
 {
+    const RfRay ray = *rp;
     const RfScene *s = q->tracer->scene;
     const RfPrimitive *p = &s->prims[it.prim];
     RfHit h;
@@ -626,7 +628,7 @@ again:
         break;
     case RF_PRIM_CONE: {
         /* a shadow query needs no normal: the hidden side is a matter of the nearest hit */
-        ok = rf_intersect_cone_framed(ray, &p->u.cone, &q->tracer->cone_frames[it.prim], t_min, t_max, !q->shadow,
+        ok = rf_intersect_cone_framed(rp, &p->u.cone, &q->tracer->cone_frames[it.prim], t_min, t_max, !q->shadow,
                                       &h);
         break;
     }
@@ -643,7 +645,7 @@ again:
             /* the hidden side of a sphere or cone: its far root may face the ray (an inside-only
              * sphere seen from outside shows its far wall) */
             if (p->type == RF_PRIM_SPHERE || p->type == RF_PRIM_CONE) {
-                t_min = nextafter(h.t, HUGE_VAL);
+                t_min = rf_next_up(h.t);
                 goto again;
             }
             return 0;
@@ -661,17 +663,17 @@ again:
 
 /* Tests an item against the limit (t_lim, key_lim): a hit counts when it is nearer, or as near
  * with a lower key (the tie rule; key_lim = 0: t < t_lim). */
-static int hit_key(Query *q, uint64_t key, RfRay ray, const RfWatertightRay *wr, double t_min, double t_lim,
+static int hit_key(Query *q, uint64_t key, const RfRay *ray, const RfWatertightRay *wr, double t_min, double t_lim,
                    uint64_t key_lim, double *t)
 {
-    double t_max = !q->shadow && key < key_lim ? nextafter(t_lim, HUGE_VAL) : t_lim;
+    double t_max = !q->shadow && key < key_lim ? rf_next_up(t_lim) : t_lim;
     return hit_item(q, key_item(key), ray, wr, t_min, t_max, t);
 }
 
 /* The BVH's callback for the items it does not intersect itself. */
 static int bvh_item(void *ctx, uint64_t key, const RfBvhRay *r, double t_min, double t_max, int inclusive, double *t)
 {
-    return hit_item(ctx, key_item(key), r->ray, NULL, t_min, inclusive ? nextafter(t_max, HUGE_VAL) : t_max, t);
+    return hit_item(ctx, key_item(key), &r->ray, NULL, t_min, inclusive ? rf_next_up(t_max) : t_max, t);
 }
 
 /* The nearest (or, shadow = 1, any) hit in one level at t >= t_min within the limit
@@ -684,7 +686,7 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
     for (int u = 0; u < lv->unbounded_count; u++) {
         uint64_t key = lv->unbounded[u];
         double t;
-        if (hit_key(q, key, ray, NULL, t_min, bt, bk, &t)) {
+        if (hit_key(q, key, &ray, NULL, t_min, bt, bk, &t)) {
             if (q->shadow)
                 return q->occluder = key, 1;
             bt = t, bk = key, found = 1;
@@ -700,7 +702,7 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
         for (int j = 0; j < lv->bvh_count; j++) {
             uint64_t key = item_key(lv->items[lv->bvh_items[j]]);
             double t;
-            if (hit_key(q, key, ray, &wr, t_min, bt, bk, &t)) {
+            if (hit_key(q, key, &ray, &wr, t_min, bt, bk, &t)) {
                 if (q->shadow)
                     return q->occluder = key, 1;
                 bt = t, bk = key, found = 1;
@@ -782,7 +784,7 @@ int rf_tracer_occluded_cached_at(const RfTracer *t, RfRay ray, const RfMotionSta
     query_init(&q, t, 1, 0, ms);
     if (*last) { /* the occluder of the last query first: neighbouring shadow rays share it */
         double tt;
-        if (hit_item(&q, key_item(*last), ray, NULL, t_min, t_max, &tt))
+        if (hit_item(&q, key_item(*last), &ray, NULL, t_min, t_max, &tt))
             return 1;
     }
     if (!trace_query(t, &q, ray, t_min, t_max)) {
@@ -800,7 +802,7 @@ RfRgb rf_tracer_transmittance_at(const RfTracer *t, RfRay ray, const RfMotionSta
     Query q;
     query_init(&q, t, 1, 0, ms);
     /* the last primitive that blocked alone: any hit on it gives 0, as the walk would */
-    if (*last && hit_item(&q, key_item(*last), ray, NULL, t_min, t_max, &(double){0}))
+    if (*last && hit_item(&q, key_item(*last), &ray, NULL, t_min, t_max, &(double){0}))
         return zero;
     RfRgb tr = rf_rgb(1, 1, 1);
     q.shadow = 0;
