@@ -323,7 +323,7 @@ static inline int sphere_hit(const RfBvhOther *o, const RfRay *ray, double t_min
         if (mode == NEAREST && sides != RF_BVH_SEE_BOTH) {
             int front = rf_vec3_dot(ray->dir, rf_sphere_root_normal(&r, *ray, o->sphere, c)) < 0.0;
             if (front == (sides == RF_BVH_SEE_BACK)) { /* the hidden side: look beyond it */
-                lo = nextafter(tc, HUGE_VAL);
+                lo = rf_next_up(tc);
                 continue;
             }
         }

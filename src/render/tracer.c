@@ -817,7 +817,7 @@ RfRgb rf_tracer_transmittance_at(const RfTracer *t, RfRay ray, const RfMotionSta
             *last = alone ? item_key(q.item) : 0;
             return zero;
         }
-        t_min = nextafter(q.hit.t, HUGE_VAL);
+        t_min = rf_next_up(q.hit.t);
     }
     *last = 0;
     return tr;
