@@ -474,6 +474,9 @@ typedef struct {
     float best_cost;
 } Partition;
 
+/* The SAH cost of a group of n items of one kind (triangles or not) within box. */
+static float group_cost(const Box4 *box, int n, int tris) { return box4_area(box) * leaf_cost(n, tris ? n : 0); }
+
 /* Every partition of items i.. given cur[0..i) in g groups (restricted growth strings), best
  * first found kept. A group's cost only grows as items join it, so a partial partition that
  * costs as much as the best already found is cut off (branch and bound). */
@@ -499,7 +502,7 @@ static void partition_search(Partition *p, int i, int g)
         }
         box4_grow(&p->box[q], p->refs[i].lo, p->refs[i].hi);
         p->n[q]++;
-        p->cost[q] = box4_area(&p->box[q]) * leaf_cost(p->n[q], p->tris ? p->n[q] : 0);
+        p->cost[q] = group_cost(&p->box[q], p->n[q], p->tris);
         p->cur[i] = q;
         partition_search(p, i + 1, q == g ? g + 1 : g);
         p->box[q] = box, p->n[q] = n, p->cost[q] = cost;
@@ -518,7 +521,7 @@ static float leaf_partition(const Collapse *c, int li, int max_groups, Partition
     p->max_groups = max_groups;
     if (p->m < 2 || p->m > MAX_LEAF)
         return 0.0f;
-    float whole = box4_area(&leaf->box) * leaf_cost(p->m, p->tris ? p->m : 0);
+    float whole = group_cost(&leaf->box, p->m, p->tris);
     p->best_cost = whole;
     partition_search(p, 0, 0);
     return whole - p->best_cost;
@@ -619,10 +622,11 @@ static int collapse(Collapse *c, int bi, int w, int depth)
                     best = k;
                 }
             }
-            if (best < 0 && !(depth == 1 && root_refine(c, slot, n)))
+            if (best < 0) { /* only leaves: the root may cut one into a chain of inner nodes */
+                if (depth == 1 && root_refine(c, slot, n))
+                    continue;
                 break;
-            if (best < 0)
-                continue; /* a leaf became a chain of inner nodes */
+            }
             int open = slot[best];
             slot[best] = c->bn[open].a;
             slot[n++] = c->bn[open].b;

@@ -361,6 +361,10 @@ static inline int watertight(const RfWatertightRay *w, const RfTriangle *tri, do
 }
 
 #if defined(__AVX2__) && defined(__FMA__)
+#define RF_WATERTIGHT_AVX 1
+#endif
+
+#if RF_WATERTIGHT_AVX
 /* watertight() with the three vertices in SIMD lanes: every lane makes the scalar kernel's
  * operations in its order (the vertex minus the origin, the shear, the two products of an edge
  * function, their difference or the difference of their fma-recovered errors, the products of
@@ -416,7 +420,7 @@ static inline int watertight_avx(const RfWatertightRay *w, const RfTriangle *tri
 static inline int watertight_any(const RfWatertightRay *w, const RfTriangle *tri, double e[3], double *det,
                                  double *t)
 {
-#if defined(__AVX2__) && defined(__FMA__)
+#if RF_WATERTIGHT_AVX
     if (!w->scalar)
         return watertight_avx(w, tri, e, det, t);
 #endif

@@ -49,6 +49,10 @@ typedef struct {
     void *trace_ctx;
 } RfPathLog;
 
+/* Samples of one dimension drawn together (rf_sample_2d_keyed_run): an area light's, a pixel's
+ * positions and lens points, into buffers of this many. */
+#define RF_SAMPLE_RUN 16
+
 /* Where a sample path is: its pixel, camera sample k of n, the pattern, its time. */
 typedef struct {
     uint64_t pixel;

@@ -230,9 +230,9 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
         if (RF_ON(RF_K_AREA) && l->samples > 0) { /* an area light: its samples, drawn a run at a time */
             RfSampleKeys keys = rf_sample_keys(ps->sampler, ps->pixel, rf_kernel_dim(depth, 2 + li), job->seed);
             uint32_t ns = (uint32_t)l->samples;
-            double uv[16][2];
-            for (uint32_t j0 = 0; j0 < ns; j0 += 16) {
-                uint32_t run = ns - j0 < 16 ? ns - j0 : 16;
+            double uv[RF_SAMPLE_RUN][2];
+            for (uint32_t j0 = 0; j0 < ns; j0 += RF_SAMPLE_RUN) {
+                uint32_t run = ns - j0 < RF_SAMPLE_RUN ? ns - j0 : RF_SAMPLE_RUN;
                 rf_sample_2d_keyed_run(&keys, ps->k * ns + j0, run, ps->n * ns, uv);
                 for (uint32_t j = 0; j < run; j++)
                     if (RF_KNAME(area_sample)(l, h.point, uv[j], &ls) &&
@@ -406,11 +406,11 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
                 int through_lens = RF_ON(RF_K_LENS) && cam->aperture_radius > 0.0;
                 RfSampleKeys pos = rf_sample_keys(job->sampler, ps.pixel, RF_DIM_PIXEL, job->seed);
                 RfSampleKeys lens = through_lens ? rf_sample_keys(job->sampler, ps.pixel, RF_DIM_LENS, job->seed) : pos;
-                double pos_uv[16][2], lens_uv[16][2];
+                double pos_uv[RF_SAMPLE_RUN][2], lens_uv[RF_SAMPLE_RUN][2];
                 for (int k = 0; k < n; k++) {
-                    int j = k % 16;
+                    int j = k % RF_SAMPLE_RUN;
                     if (j == 0) {
-                        uint32_t run = n - k < 16 ? (uint32_t)(n - k) : 16;
+                        uint32_t run = n - k < RF_SAMPLE_RUN ? (uint32_t)(n - k) : RF_SAMPLE_RUN;
                         rf_sample_2d_keyed_run(&pos, (uint32_t)k, run, (uint32_t)n, pos_uv);
                         if (through_lens)
                             rf_sample_2d_keyed_run(&lens, (uint32_t)k, run, (uint32_t)n, lens_uv);

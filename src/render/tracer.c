@@ -57,7 +57,8 @@ struct RfTracer {
      * star-prisms). Polygon prim's triangle k has the corners cut[cut_first[prim] + 3 k + j]. */
     int *cut;
     size_t *cut_first;
-    RfConeFrame *cone_frames; /* per primitive, when the scene has cones: their frames, once */
+    RfConeFrame *cone_frames; /* the cones' frames, once: primitive i's at i - cone_first (the */
+    size_t cone_first;        /* primitives from the first cone to the last; NULL: no cones) */
 };
 
 /* ---- preparation ---- */
@@ -318,21 +319,26 @@ static RfStatus build_object(RfTracer *t, int o)
     return st;
 }
 
-/* The frames of the scene's cones (struct RfTracer), when it has any. */
+/* The frames of the scene's cones (struct RfTracer), when it has any: an array over the
+ * primitives from the first cone to the last, so that a mesh with one cone does not pay for
+ * every triangle. */
 static RfStatus cone_frames(RfTracer *t)
 {
     const RfScene *s = t->scene;
-    size_t i = 0;
-    while (i < s->prim_count && s->prims[i].type != RF_PRIM_CONE)
-        i++;
-    if (i == s->prim_count)
+    size_t first = 0, end = s->prim_count;
+    while (first < end && s->prims[first].type != RF_PRIM_CONE)
+        first++;
+    while (end > first && s->prims[end - 1].type != RF_PRIM_CONE)
+        end--;
+    if (first == end)
         return RF_OK;
-    t->cone_frames = malloc(sizeof *t->cone_frames * s->prim_count);
+    t->cone_first = first;
+    t->cone_frames = malloc(sizeof *t->cone_frames * (end - first));
     if (!t->cone_frames)
         return RF_ERR_NOMEM;
-    for (; i < s->prim_count; i++)
+    for (size_t i = first; i < end; i++)
         if (s->prims[i].type == RF_PRIM_CONE)
-            t->cone_frames[i] = rf_cone_frame(s->prims[i].u.cone);
+            t->cone_frames[i - first] = rf_cone_frame(s->prims[i].u.cone);
     return RF_OK;
 }
 
@@ -628,8 +634,8 @@ again:
         break;
     case RF_PRIM_CONE: {
         /* a shadow query needs no normal: the hidden side is a matter of the nearest hit */
-        ok = rf_intersect_cone_framed(rp, &p->u.cone, &q->tracer->cone_frames[it.prim], t_min, t_max, !q->shadow,
-                                      &h);
+        const RfConeFrame *frame = &q->tracer->cone_frames[(size_t)it.prim - q->tracer->cone_first];
+        ok = rf_intersect_cone_framed(rp, &p->u.cone, frame, t_min, t_max, !q->shadow, &h);
         break;
     }
     default:
