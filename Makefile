@@ -32,8 +32,11 @@ SANFLAGS := $(if $(SAN),-fsanitize=address$(comma)undefined -fno-sanitize-recove
 # -ffp-contract=off: results must not depend on the compiler fusing a*b+c (DESIGN.md)
 CFLAGS_ALL = -std=c99 -D_POSIX_C_SOURCE=200809L $(OPT) $(ARCH) -Wall -Wextra -Wpedantic -Werror \
              -ffp-contract=off -pthread -Iinclude -I$(BUILD)/gen $(PKG_CFLAGS) $(SANFLAGS) $(CFLAGS)
-# -fPIC: the objects go into the shared library too (compiled once; the tracer is as fast, README)
-CFLAGS_ALL += -fPIC
+# -fPIC: the objects go into the shared library too (compiled once; the tracer is as fast, README);
+# -fno-semantic-interposition: the library's own calls are not interposable (its version script
+# exports the public names only), so the compiler may inline them as it does without -fPIC
+OBJ_FLAGS := -fPIC -fno-semantic-interposition
+CFLAGS_ALL += $(OBJ_FLAGS)
 # the flags that decide numeric results, recorded in every EXR the renderer writes
 NUMERIC_FLAGS = -std=c99 $(OPT) $(ARCH) -ffp-contract=off $(SANFLAGS) $(CFLAGS)
 LDFLAGS_ALL = -pthread $(SANFLAGS) $(LDFLAGS)
@@ -93,10 +96,10 @@ $(BUILD)/config.mk: tools/deps.sh Makefile
 Q := $(if $(V),,@)
 
 # rewritten only when the flags change, and every object depends on it: a change of OPT, ARCH,
-# SAN or CFLAGS rebuilds everything (the flags decide numeric results, DESIGN.md)
+# SAN, CFLAGS or OBJ_FLAGS rebuilds everything (the flags decide numeric results, DESIGN.md)
 $(BUILD)/gen/build_info.h: $(BUILD)/config.mk FORCE
 	@mkdir -p $(dir $@)
-	@echo '#define RF_BUILD_FLAGS "$(strip $(NUMERIC_FLAGS))" /* objects: -fPIC */' > $@.tmp
+	@echo '#define RF_BUILD_FLAGS "$(strip $(NUMERIC_FLAGS))" /* objects: $(OBJ_FLAGS) */' > $@.tmp
 	@cmp -s $@.tmp $@ && rm -f $@.tmp || mv $@.tmp $@
 FORCE:
 

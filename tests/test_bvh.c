@@ -114,7 +114,7 @@ static void check_rays(Scene *s, const RfRay *rays, int n, double t_max, const c
             int occ;
             RfBvhHit want = brute_nearest(s, rays[i], 0.0, t_max, &occ);
             RfBvhRay br;
-            rf_bvh_ray_init(&bvh, rays[i], &br);
+            rf_bvh_ray_init(&bvh, &rays[i], &br);
             RfBvhHit got;
             memset(&got, 0, sizeof got);
             got.t = t_max;
@@ -241,7 +241,7 @@ static void t_bvh_ray_constants(void)
             d[a] = vals[(st >> 41) % nv] * (i % 5 ? 1.0 : 0.61);
         }
         RfBvhRay r;
-        rf_bvh_ray_init(&bvh, rf_ray(rf_vec3(o[0], o[1], o[2]), rf_vec3(d[0], d[1], d[2])), &r);
+        rf_bvh_ray_init(&bvh, &(RfRay){rf_vec3(o[0], o[1], o[2]), rf_vec3(d[0], d[1], d[2])}, &r);
         for (int a = 0; a < 3; a++) {
             int neg = signbit(d[a]) != 0;
             float f = (float)o[a], w = fabsf(f) * 0x1p-23f + 0x1p-126f, up = f + w, down = f - w;
@@ -271,7 +271,7 @@ static void t_bvh_degenerate(void)
     RfBvhHit best;
     memset(&best, 0, sizeof best);
     best.t = HUGE_VAL;
-    rf_bvh_ray_init(&bvh, rf_ray(rf_vec3(0, 0, 0), rf_vec3(1, 0, 0)), &br);
+    rf_bvh_ray_init(&bvh, &(RfRay){rf_vec3(0, 0, 0), rf_vec3(1, 0, 0)}, &br);
     RF_CHECK_EQ_INT(rf_bvh_nearest(&bvh, &br, 0, &best, ball_hit, &e), 0);
     RF_CHECK_EQ_INT(rf_bvh_occluded(&bvh, &br, 0, HUGE_VAL, ball_hit, &e, NULL), 0);
     rf_bvh_free(&bvh);

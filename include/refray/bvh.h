@@ -127,7 +127,7 @@ typedef struct {
     int filter;        /* 0: every triangle goes to the double test (coordinates out of range) */
 } RfBvhRay;
 
-void rf_bvh_ray_init(const RfBvh *bvh, RfRay ray, RfBvhRay *out);
+void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *ray, RfBvhRay *out);
 
 /* The caller's test of a non-triangle item: 1 and *t when the item is hit at t >= t_min with
  * t < t_max, or t <= t_max when inclusive. The caller keeps what else it needs of the hit: a

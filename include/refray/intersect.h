@@ -48,7 +48,7 @@ int rf_intersect_sphere(RfRay ray, RfSphere s, RfSphereMethod method, double t_m
                         RfHit *hit);
 /* The stable method's two roots t[0] <= t[1] (1), or none (0), with what a root's normal needs:
  * rf_intersect_sphere is these two routines, and the tracer's own loops use them directly. */
-typedef struct { double t[2]; RfVec3 v; double off; } RfSphereRoots;
+typedef struct { double t[2]; RfVec3 v; double sq, a; } RfSphereRoots; /* sq = sqrt(D/4), a = <d,d> */
 int rf_sphere_roots(RfRay ray, RfSphere s, RfSphereRoots *out);
 /* The outward unit normal at root t[far]. */
 RfVec3 rf_sphere_root_normal(const RfSphereRoots *r, RfRay ray, RfSphere s, int far);

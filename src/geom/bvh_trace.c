@@ -24,9 +24,10 @@ static inline float fmaxf_(float a, float b) { return b > a ? b : a; }
 /* float unit roundoff */
 #define U32 0x1p-24
 
-void rf_bvh_ray_init(const RfBvh *bvh, RfRay ray, RfBvhRay *r)
+void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
 {
     (void)bvh;
+    const RfRay ray = *rp;
     r->ray = ray;
     r->tri_ready = 0;
     /* Slab distances (plane - origin) * inv, rounded toward "hit" (docs/performance.md): the

@@ -19,12 +19,14 @@ static int in_range(double t, double t_min, double t_max)
  * which the caller may compute more precisely than the formula. q = -(bh + sign(bh) sqrt(dq))
  * adds two numbers of the same sign, so no cancellation; the roots are q/a and c/q (Vieta).
  * Returns 0 (dq < 0 or no solution) or 1 with t[0] <= t[1]; a double root and the linear case
- * (a = 0) give t[0] = t[1]. */
-static int solve_quadratic(double a, double bh, double c, double dq, double t[2])
+ * (a = 0) give t[0] = t[1]. *root_dq: sqrt(dq) when dq >= 0. */
+static int solve_quadratic(double a, double bh, double c, double dq, double t[2], double *root_dq)
 {
     if (!(dq >= 0.0))
         return 0;
-    double q = -(bh + copysign(sqrt(dq), bh));
+    double sq = sqrt(dq);
+    *root_dq = sq; /* for the caller's normal: one square root */
+    double q = -(bh + copysign(sq, bh));
     if (q == 0.0) {          /* bh = 0 and dq = 0, so ac = 0 */
         if (a == 0.0)        /* 0 = c: no equation left (a ray inside the surface) or none */
             return 0;
@@ -86,13 +88,13 @@ static SphereParts sphere_parts(RfRay ray, RfSphere s)
 
 /* The stable method's roots t[0] <= t[1] from its parts (computed here into *p). The
  * compensated c is computed only when there are real roots: most sphere tests are misses. */
-static inline int sphere_stable(RfRay ray, RfSphere s, SphereParts *p, double *c, double t[2])
+static inline int sphere_stable(RfRay ray, RfSphere s, SphereParts *p, double *c, double t[2], double *root_dq)
 {
     *p = sphere_parts(ray, s);
     if (!(p->dq >= 0.0))
         return 0;
     *c = dot_minus_square(p->f, s.radius);
-    return solve_quadratic(p->a, p->bh, *c, p->dq, t);
+    return solve_quadratic(p->a, p->bh, *c, p->dq, t, root_dq);
 }
 
 /* §3.5.1 */
@@ -121,7 +123,8 @@ RfSphereQuadratic rf_sphere_quadratic(RfRay ray, RfSphere s, RfSphereMethod meth
         return q;
     }
     SphereParts p;
-    int real = sphere_stable(ray, s, &p, &q.c, t);
+    double sq;
+    int real = sphere_stable(ray, s, &p, &q.c, t, &sq);
     if (!(p.dq >= 0.0))
         q.c = dot_minus_square(f, s.radius);
     q.disc = 4.0 * p.dq;
@@ -137,10 +140,10 @@ int rf_sphere_roots(RfRay ray, RfSphere s, RfSphereRoots *out)
 {
     SphereParts p;
     double c;
-    if (!sphere_stable(ray, s, &p, &c, out->t))
+    if (!sphere_stable(ray, s, &p, &c, out->t, &out->sq))
         return 0;
     out->v = p.v;
-    out->off = sqrt(p.dq > 0.0 ? p.dq : 0.0) / p.a;
+    out->a = p.a;
     return 1;
 }
 
@@ -148,7 +151,8 @@ int rf_sphere_roots(RfRay ray, RfSphere s, RfSphereRoots *out)
  * so the normal of a far sphere keeps its digits (|v + x d| = r exactly) */
 RfVec3 rf_sphere_root_normal(const RfSphereRoots *r, RfRay ray, RfSphere s, int far)
 {
-    return rf_vec3_scale(rf_vec3_add(r->v, rf_vec3_scale(ray.dir, far ? r->off : -r->off)), 1.0 / s.radius);
+    double off = (r->sq > 0.0 ? r->sq : 0.0) / r->a; /* sqrt(D/4)/a; +0 for dq = -0 */
+    return rf_vec3_scale(rf_vec3_add(r->v, rf_vec3_scale(ray.dir, far ? off : -off)), 1.0 / s.radius);
 }
 
 /* The smallest root in [t_min, t_max) of t[0] <= t[1]: 0 (none), 1 (near) or 2 (far). */
@@ -513,8 +517,8 @@ int rf_intersect_cone_framed(const RfRay *rp, const RfCone *cp, const RfConeFram
      * difference and a sum as the sphere's (r - |v|)(r + |v|) */
     double lw = rf_vec3_length(rf_vec3_sub(rf_vec3_scale(dp, r0), rf_vec3_scale(op, m * dz)));
     double lx = rf_vec3_length(rf_vec3_cross(op, dp));
-    double t[2];
-    if (!solve_quadratic(a, bh, c, (lw - lx) * (lw + lx), t))
+    double t[2], sq;
+    if (!solve_quadratic(a, bh, c, (lw - lx) * (lw + lx), t, &sq))
         return 0;
     for (int i = 0; i < 2; i++) {
         if (!in_range(t[i], t_min, t_max))

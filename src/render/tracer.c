@@ -554,7 +554,7 @@ void rf_motion_state_set(RfMotionState *ms, double time)
     }
 }
 
-static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, double *t_lim, uint64_t *key_lim);
+static int trace_level(const Level *lv, Query *q, const RfRay *rp, double t_min, double *t_lim, uint64_t *key_lim);
 
 /* §4.8/§4.9: the ray goes into object space by M^-1 without normalising its direction, so t
  * is the same in both spaces; the normal comes back by the inverse transpose (M^-1)^T. */
@@ -583,7 +583,7 @@ static int hit_instance(Query *q, const RfPrimitive *p, RfRay ray, double t_min,
     sub.motion = q->motion;
     double tm = t_max;
     uint64_t key = 0;
-    if (!trace_level(&tr->objects[in->object], &sub, r, t_min, &tm, &key))
+    if (!trace_level(&tr->objects[in->object], &sub, &r, t_min, &tm, &key))
         return 0;
     if (q->shadow)
         return *t = tm, 1;
@@ -626,7 +626,7 @@ again:
         if (it.sub >= 0) {
             RfWatertightRay own;
             if (!wr) {
-                own = rf_watertight_ray(ray);
+                own = rf_watertight_ray(*rp);
                 wr = &own;
             }
             ok = rf_intersect_triangle_watertight(wr, item_triangle(q->tracer, it), t_min, t_max, &h);
@@ -684,7 +684,7 @@ static int bvh_item(void *ctx, uint64_t key, const RfBvhRay *r, double t_min, do
 
 /* The nearest (or, shadow = 1, any) hit in one level at t >= t_min within the limit
  * (*t_lim, *key_lim) (hit_key's rule). Returns 1 with q->hit, q->item and the new limit. */
-static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, double *t_lim, uint64_t *key_lim)
+static int trace_level(const Level *lv, Query *q, const RfRay *rp, double t_min, double *t_lim, uint64_t *key_lim)
 {
     double bt = *t_lim;
     uint64_t bk = *key_lim;
@@ -692,7 +692,7 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
     for (int u = 0; u < lv->unbounded_count; u++) {
         uint64_t key = lv->unbounded[u];
         double t;
-        if (hit_key(q, key, &ray, NULL, t_min, bt, bk, &t)) {
+        if (hit_key(q, key, rp, NULL, t_min, bt, bk, &t)) {
             if (q->shadow)
                 return q->occluder = key, 1;
             bt = t, bk = key, found = 1;
@@ -704,18 +704,18 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
     RfBvhRay br;
     if (q->tracer->opt.brute_force) {
         /* every item, in key order, with the double kernels alone: the reference for the BVH */
-        RfWatertightRay wr = rf_watertight_ray(ray);
+        RfWatertightRay wr = rf_watertight_ray(*rp);
         for (int j = 0; j < lv->bvh_count; j++) {
             uint64_t key = item_key(lv->items[lv->bvh_items[j]]);
             double t;
-            if (hit_key(q, key, &ray, &wr, t_min, bt, bk, &t)) {
+            if (hit_key(q, key, rp, &wr, t_min, bt, bk, &t)) {
                 if (q->shadow)
                     return q->occluder = key, 1;
                 bt = t, bk = key, found = 1;
             }
         }
     } else if (lv->bvh_count > 0) {
-        rf_bvh_ray_init(&lv->bvh, ray, &br);
+        rf_bvh_ray_init(&lv->bvh, rp, &br);
         if (q->shadow) {
             uint64_t key = 0;
             int hit = rf_bvh_occluded(&lv->bvh, &br, t_min, bt, bvh_item, q, &key);
@@ -740,7 +740,7 @@ static int trace_level(const Level *lv, Query *q, RfRay ray, double t_min, doubl
         } else {
             q->hit.t = bt;
             q->hit.l[0] = q->hit.l[1] = q->hit.l[2] = 0.0;
-            q->hit.normal = rf_sphere_root_normal(&best.roots, ray, *best.sphere, best.far);
+            q->hit.normal = rf_sphere_root_normal(&best.roots, *rp, *best.sphere, best.far);
         }
         q->item = key_item(bk);
         q->material = (int)(best.user & USER_MATERIAL);
@@ -768,7 +768,7 @@ static int trace_query(const RfTracer *t, Query *q, RfRay ray, double t_min, dou
     uint64_t key = 0;
     q->tracer = t;
     q->instanced = 0;
-    return trace_level(&t->world, q, ray, t_min, &t_max, &key);
+    return trace_level(&t->world, q, &ray, t_min, &t_max, &key);
 }
 
 int rf_tracer_occluded(const RfTracer *t, RfRay ray, double t_min, double t_max)
