@@ -57,6 +57,7 @@ typedef struct {
     RfSampler sampler;
     uint32_t dimension;
     uint64_t pixel, seed;
+    uint64_t stream;     /* rf_rng_stream(pixel, seed): random and stratified draw from it */
     uint64_t base;       /* the pixel's key (every pattern but random) */
     RfPermuteKeys order; /* uniform, stratified: the strata's shuffle */
     uint64_t sobol_index, sobol_x, sobol_y;

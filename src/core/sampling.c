@@ -193,8 +193,10 @@ int rf_sampler_parse(const char *name)
 
 RfSampleKeys rf_sample_keys(RfSampler s, uint64_t pixel, uint32_t dimension, uint64_t seed)
 {
-    RfSampleKeys K = {s, dimension, pixel, seed, 0, {{0, 0, 0, 0}, {0, 0, 0, 0}}, 0, 0, 0};
+    RfSampleKeys K = {s, dimension, pixel, seed, 0, 0, {{0, 0, 0, 0}, {0, 0, 0, 0}}, 0, 0, 0};
     /* random: the counter-based generator hashes (pixel, k, dimension) per value */
+    if (s == RF_SAMPLER_RANDOM || s == RF_SAMPLER_STRATIFIED || s >= RF_SAMPLER_COUNT)
+        K.stream = rf_rng_stream(pixel, seed);
     if (s == RF_SAMPLER_RANDOM || s >= RF_SAMPLER_COUNT)
         return K;
     K.base = rf_key_base(pixel, seed);
@@ -218,7 +220,6 @@ static uint32_t rf_cell_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n)
 
 void rf_sample_2d_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n, double out[2])
 {
-    const uint64_t pixel = K->pixel, seed = K->seed;
     uint32_t du = 2 * K->dimension, dv = 2 * K->dimension + 1;
     if (n == 0)
         n = 1;
@@ -236,7 +237,7 @@ void rf_sample_2d_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n, double ou
     }
     case RF_SAMPLER_STRATIFIED: {
         k %= n;
-        double u = rf_rng_uniform(pixel, k, du, seed), v = rf_rng_uniform(pixel, k, dv, seed);
+        double u = rf_rng_uniform_at(K->stream, k, du), v = rf_rng_uniform_at(K->stream, k, dv);
         uint32_t c = rf_cell_keyed(K, k, n), side = rf_isqrt(n);
         if (side * side == n) {
             /* the operations of the renderer's k x k jitter, in the same order; the clamp only
@@ -269,8 +270,8 @@ void rf_sample_2d_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n, double ou
     case RF_SAMPLER_COUNT:
         break;
     }
-    out[0] = rf_rng_uniform(pixel, k, du, seed);
-    out[1] = rf_rng_uniform(pixel, k, dv, seed);
+    out[0] = rf_rng_uniform_at(K->stream, k, du);
+    out[1] = rf_rng_uniform_at(K->stream, k, dv);
 }
 
 #if RF_SAMPLING_SSE

@@ -208,9 +208,11 @@ int rf_intersect_plane(RfRay ray, RfPlane p, double t_min, double t_max, RfHit *
     return 1;
 }
 
-static RfVec3 triangle_unit_normal(RfTriangle tri)
+/* by pointer: the triangle is read where it lies (a copy made just before would be read back
+ * across its stores) */
+static RfVec3 triangle_unit_normal(const RfTriangle *tri)
 {
-    return rf_vec3_normalize(rf_vec3_cross(rf_vec3_sub(tri.p2, tri.p1), rf_vec3_sub(tri.p3, tri.p1)));
+    return rf_vec3_normalize(rf_vec3_cross(rf_vec3_sub(tri->p2, tri->p1), rf_vec3_sub(tri->p3, tri->p1)));
 }
 
 static void set_triangle_hit(RfHit *hit, RfTriangle tri, double t, double l1, double l2, double l3)
@@ -219,7 +221,7 @@ static void set_triangle_hit(RfHit *hit, RfTriangle tri, double t, double l1, do
     hit->l[0] = l1;
     hit->l[1] = l2;
     hit->l[2] = l3;
-    hit->normal = triangle_unit_normal(tri);
+    hit->normal = triangle_unit_normal(&tri);
 }
 
 void rf_watertight_hit(const RfTriangle *tri, double t, const double e[4], const RfVec3 *normal, RfHit *hit)
@@ -234,7 +236,7 @@ void rf_watertight_hit(const RfTriangle *tri, double t, const double e[4], const
     for (int i = 0; i < 3; i++)
         hit->l[i] = e[i] / e[3];
 #endif
-    hit->normal = normal ? *normal : triangle_unit_normal(*tri);
+    hit->normal = normal ? *normal : triangle_unit_normal(tri);
 }
 
 /* §3.5.3 as in the script: the plane <x,n> = <p1,n> with n = (p2-p1) x (p3-p1), then the
@@ -442,7 +444,7 @@ int rf_watertight_edges(const RfWatertightRay *w, const RfTriangle *tri, double 
     return watertight_any(w, tri, e, &e[3], t);
 }
 
-RfVec3 rf_triangle_unit_normal(const RfTriangle *tri) { return triangle_unit_normal(*tri); }
+RfVec3 rf_triangle_unit_normal(const RfTriangle *tri) { return triangle_unit_normal(tri); }
 
 /* l1, l2, l3 = U, V, W / det. */
 int rf_intersect_triangle_watertight(const RfWatertightRay *w, RfTriangle tri, double t_min,
