@@ -82,7 +82,7 @@ static int refray_primary(void *ctx, int chunk, int thread)
     int lo = (int)((long long)j->set->count * chunk / CHUNKS), hi = (int)((long long)j->set->count * (chunk + 1) / CHUNKS);
     (void)thread;
     for (int i = lo; i < hi; i++)
-        j->set->answer[i] = rf_tracer_intersect(j->tracer, j->set->rays[i], 0.0, HUGE_VAL, &j->hits[i]);
+        j->set->answer[i] = rf_tracer_intersect(j->tracer, &j->set->rays[i], 0.0, HUGE_VAL, &j->hits[i]);
     return 0;
 }
 
@@ -92,7 +92,7 @@ static int refray_shadow(void *ctx, int chunk, int thread)
     int lo = (int)((long long)j->set->count * chunk / CHUNKS), hi = (int)((long long)j->set->count * (chunk + 1) / CHUNKS);
     (void)thread;
     for (int i = lo; i < hi; i++)
-        j->set->answer[i] = rf_tracer_occluded(j->tracer, j->set->rays[i], 0.0, j->set->t_max[i]);
+        j->set->answer[i] = rf_tracer_occluded(j->tracer, &j->set->rays[i], 0.0, j->set->t_max[i]);
     return 0;
 }
 

@@ -500,7 +500,7 @@ TraceAns tracer_query(const World &w, const Opts &o, RfRay r, double t_max)
 {
     if (!o.kernel) {
         RfSurfaceHit h;
-        int p = rf_tracer_intersect(w.tr, r, 0.0, t_max, &h);
+        int p = rf_tracer_intersect(w.tr, &r, 0.0, t_max, &h);
         return {p, p >= 0 ? h.t : NAN};
     }
     std::vector<Cand> cand;
@@ -1198,7 +1198,7 @@ void surface_ray(const World &w, const Opts &o, Rng &rng, Stats &st)
     RfRay pr = rf_ray(box_point(w.bounds, 3.0, rng), rf_vec3(0, 0, 0));
     pr.dir = rf_vec3_sub(box_point(w.bounds, 0.8, rng), pr.origin);
     RfSurfaceHit h;
-    int prim = rf_tracer_intersect(w.tr, pr, 0.0, HUGE_VAL, &h);
+    int prim = rf_tracer_intersect(w.tr, &pr, 0.0, HUGE_VAL, &h);
     if (prim < 0)
         return;
     RfVec3 n = h.normal, d;
@@ -1507,7 +1507,7 @@ void run_acne(const Opts &o, Stats &st)
                 RfVec3 eye = rf_vec3_add(c, rf_vec3_scale(rng.unit(), 4 * size));
                 RfRay pr = rf_ray(eye, rf_vec3_sub(rf_vec3_add(c, rf_vec3_scale(rng.ball(), size)), eye));
                 RfSurfaceHit h;
-                int prim = rf_tracer_intersect(w.tr, pr, 0.0, HUGE_VAL, &h);
+                int prim = rf_tracer_intersect(w.tr, &pr, 0.0, HUGE_VAL, &h);
                 if (prim < 0)
                     continue;
                 RfVec3 n = h.normal;
@@ -1535,7 +1535,7 @@ void run_acne(const Opts &o, Stats &st)
                 RfSurfaceHit sh;
                 st.rays++;
                 st.acne_d++;
-                if (rf_tracer_intersect(w.tr, sr, 0.0, dist, &sh) >= 0) {
+                if (rf_tracer_intersect(w.tr, &sr, 0.0, dist, &sh) >= 0) {
                     st.acne_n++;
                     st.real++;
                     example(st, "scale 1e%d %s: shadow ray from (%a,%a,%a) dir (%a,%a,%a) hits prim %d at t=%g",
@@ -1582,7 +1582,7 @@ void run_leak(const Opts &o, Stats &st)
             RfSurfaceHit sh;
             st.rays++;
             st.acne_d++;
-            if (rf_tracer_intersect(w.tr, sr, 0.0, rf_vec3_length(rf_vec3_sub(Lp, sr.origin)), &sh) < 0) {
+            if (rf_tracer_intersect(w.tr, &sr, 0.0, rf_vec3_length(rf_vec3_sub(Lp, sr.origin)), &sh) < 0) {
                 st.acne_n++;
                 st.real++;
                 example(st, "scale 1e%d: light leaks past the plate from (%a,%a,%a)", k, sr.origin.x, sr.origin.y,

@@ -377,7 +377,7 @@ static void inspect(View *v, int x, int y)
         rf_tracer_create(&v->scene, &t) == RF_OK) {
         RfRay ray = rf_camera_ray(&cam, x + 0.5, y + 0.5, 0.0, 0.0);
         RfSurfaceHit h;
-        int p = rf_tracer_intersect(t, ray, 0.0, HUGE_VAL, &h);
+        int p = rf_tracer_intersect(t, &ray, 0.0, HUGE_VAL, &h);
         if (p >= 0) {
             const RfPrimitive *pr = &v->scene.prims[p];
             printf("; hits %s #%d (line %d, material '%s') at t = %.9g, point %.9g %.9g %.9g",

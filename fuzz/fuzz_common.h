@@ -126,9 +126,9 @@ static inline void rf_fuzz_rays(const RfScene *s, const RfTracer *tr)
             RfRay ray = rf_ray(origins[o], rf_vec3(dir.x / len, dir.y / len, dir.z / len));
             RfSurfaceHit hit;
             uint64_t last = 0;
-            (void)rf_tracer_intersect(tr, ray, 0.0, INFINITY, &hit);
-            (void)rf_tracer_occluded(tr, ray, 1e-9, 1e30);
-            (void)rf_tracer_occluded_cached(tr, ray, 0.0, INFINITY, &last);
+            (void)rf_tracer_intersect(tr, &ray, 0.0, INFINITY, &hit);
+            (void)rf_tracer_occluded(tr, &ray, 1e-9, 1e30);
+            (void)rf_tracer_occluded_cached(tr, &ray, 0.0, INFINITY, &last);
         }
 }
 

@@ -58,7 +58,7 @@ static int scene_rays(const RfScene *s, const RfTracer *t, RfTestRng *rng, RfRay
             RfRay r = rf_camera_ray(&cam, x + 0.5, y + 0.5, 0, 0);
             rays[n++] = r;
             RfSurfaceHit h;
-            if (n < max && rf_tracer_intersect(t, r, 0, HUGE_VAL, &h) >= 0) {
+            if (n < max && rf_tracer_intersect(t, &r, 0, HUGE_VAL, &h) >= 0) {
                 RfVec3 d = rf_vec3(rf_test_uniform(rng, -1, 1), rf_test_uniform(rng, -1, 1), rf_test_uniform(rng, -1, 1));
                 if (rf_vec3_dot(d, h.normal) < 0)
                     d = rf_vec3_neg(d);
@@ -103,10 +103,10 @@ static void t_accel_scenes_vs_brute_force(void)
             int p[KINDS];
             double dist = rf_test_uniform(&rng, 0.1, 20);
             for (int m = 0; m < KINDS; m++)
-                p[m] = rf_tracer_intersect(t[m], rays[k], 0, HUGE_VAL, &h[m]);
+                p[m] = rf_tracer_intersect(t[m], &rays[k], 0, HUGE_VAL, &h[m]);
             int occ[KINDS];
             for (int m = 0; m < KINDS; m++)
-                occ[m] = rf_tracer_occluded(t[m], rays[k], 0, dist);
+                occ[m] = rf_tracer_occluded(t[m], &rays[k], 0, dist);
             rf_test_checks++;
             for (int m = 1; m < KINDS; m++)
                 if (!same_hit(p[0], &h[0], p[m], &h[m]) || occ[0] != occ[m]) {
@@ -187,7 +187,7 @@ static void t_accel_tie_rule(void)
             RfRay r = rf_ray(rf_vec3(x, x, 1), rf_vec3(0, 0, -1));
             for (int m = 0; m < KINDS; m++) {
                 RfSurfaceHit h;
-                int p = rf_tracer_intersect(t[m], r, 0, HUGE_VAL, &h);
+                int p = rf_tracer_intersect(t[m], &r, 0, HUGE_VAL, &h);
                 ok &= p == 0 && h.t == 1.0 && h.material == 0;
                 ties += m == 0 && p == 0;
             }
@@ -225,7 +225,7 @@ static void t_accel_exact_edge_sign(void)
     RfRay ray = rf_ray(rf_vec3(0, 0, 0), rf_vec3(0, 0, 1));
     for (int m = 0; m < KINDS; m++) {
         RfSurfaceHit h;
-        int p = rf_tracer_intersect(t[m], ray, 0.0, HUGE_VAL, &h);
+        int p = rf_tracer_intersect(t[m], &ray, 0.0, HUGE_VAL, &h);
         RF_CHECK_EQ_INT(p, 1);
         RF_CHECK(h.t == 1.0 && h.material == 1);
         rf_tracer_free(t[m]);
@@ -263,7 +263,7 @@ static void t_accel_nonconvex_watertight(void)
                 RfRay ray = rf_ray(o, rf_vec3_sub(q, o));
                 for (int m = 0; m < KINDS; m++) {
                     RfSurfaceHit h;
-                    leaks += rf_tracer_intersect(t[m], ray, 0.0, HUGE_VAL, &h) < 0;
+                    leaks += rf_tracer_intersect(t[m], &ray, 0.0, HUGE_VAL, &h) < 0;
                 }
                 rays++;
             }
@@ -272,7 +272,7 @@ static void t_accel_nonconvex_watertight(void)
     RfRay doc = rf_ray(o, rf_vec3(0x1.041beab7f999ap-1, -0x1.8448e4a14cccdp-3, 0x1.5586c8b999998p-2));
     for (int m = 0; m < KINDS; m++) {
         RfSurfaceHit h;
-        leaks += rf_tracer_intersect(t[m], doc, 0.0, HUGE_VAL, &h) < 0;
+        leaks += rf_tracer_intersect(t[m], &doc, 0.0, HUGE_VAL, &h) < 0;
         rf_tracer_free(t[m]);
     }
     RF_CHECK_EQ_INT(nonconvex, 2);
@@ -322,7 +322,7 @@ static void t_accel_far_vertex_rays(void)
                 RfSurfaceHit h[KINDS];
                 int p[KINDS];
                 for (int q = 0; q < KINDS; q++)
-                    p[q] = rf_tracer_intersect(t[q], ray, 0.0, HUGE_VAL, &h[q]);
+                    p[q] = rf_tracer_intersect(t[q], &ray, 0.0, HUGE_VAL, &h[q]);
                 hits += p[BRUTE] >= 0;
                 wrong += !same_hit(p[VECTOR], &h[VECTOR], p[BRUTE], &h[BRUTE]) ||
                          !same_hit(p[SCALAR], &h[SCALAR], p[BRUTE], &h[BRUTE]);

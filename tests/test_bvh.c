@@ -66,7 +66,8 @@ static RfBvhHit brute_nearest(const Scene *s, RfRay ray, double t_min, double t_
     RfBvhHit best;
     memset(&best, 0, sizeof best);
     best.t = t_max;
-    RfWatertightRay wr = rf_watertight_ray(ray);
+    RfWatertightRay wr;
+    rf_watertight_ray(&ray, &wr);
     *occluded = 0;
     for (int i = 0; i < s->n_tris + s->n_balls; i++) {
         double t;
@@ -126,7 +127,8 @@ static void check_rays(Scene *s, const RfRay *rays, int n, double t_max, const c
                 int item = (int)(occ_key - 1), occ1 = 0;
                 RfHit hh;
                 if (item < s->n_tris) {
-                    RfWatertightRay wr1 = rf_watertight_ray(rays[i]);
+                    RfWatertightRay wr1;
+                    rf_watertight_ray(&rays[i], &wr1);
                     occ1 = rf_intersect_triangle_watertight(&wr1, s->tris[item], 0.0, t_max, &hh);
                 } else {
                     occ1 = rf_intersect_sphere(rays[i], s->balls[item - s->n_tris], RF_SPHERE_STABLE, 0.0, t_max, &hh);

@@ -240,7 +240,7 @@ static int compare(const RfScene *raster, const RfScene *traced, RfDiffResult *r
             RfRay ray = rf_camera_ray(&cam, x + 0.5, y + 0.5, 0, 0);
             RfSurfaceHit h;
             double c = -rf_vec3_dot(ray.dir, cam.basis.w);
-            dt.data[y * ct.width + x] = rf_tracer_intersect(tr, ray, sc->hither / c, HUGE_VAL, &h) >= 0
+            dt.data[y * ct.width + x] = rf_tracer_intersect(tr, &ray, sc->hither / c, HUGE_VAL, &h) >= 0
                                             ? (float)(h.t * c) : INFINITY;
         }
     rf_tracer_free(tr);

@@ -269,7 +269,7 @@ static void t_motion_equals_static_at_time(void)
             double u = (k % 20) / 19.0, v = (k / 20) / 19.0;
             RfRay r = rf_ray(v3(0, 1.5, 5), rf_vec3_normalize(v3(-1.6 + 3.2 * u, 0.6 - 1.4 * v, -5)));
             RfSurfaceHit a, b;
-            int ha = rf_tracer_intersect_at(tm, r, ms, 0.0, HUGE_VAL, &a), hb = rf_tracer_intersect(ts, r, 0.0, HUGE_VAL, &b);
+            int ha = rf_tracer_intersect_at(tm, &r, ms, 0.0, HUGE_VAL, &a), hb = rf_tracer_intersect(ts, &r, 0.0, HUGE_VAL, &b);
             RF_CHECK_EQ_INT(ha, hb);
             if (ha >= 0 && hb >= 0) {
                 RF_CHECK(memcmp(&a.t, &b.t, sizeof a.t) == 0);

@@ -366,7 +366,7 @@ static void test_ellipsoid_normal(void)
                                             rf_test_uniform(&rng, -0.3, 0.3),
                                             rf_test_uniform(&rng, -0.5, 0.5)));
         RfSurfaceHit h;
-        if (rf_tracer_intersect(t, rf_ray(o, rf_vec3_sub(aim, o)), 0, HUGE_VAL, &h) < 0)
+        if (rf_tracer_intersect(t, &(RfRay){o, rf_vec3_sub(aim, o)}, 0, HUGE_VAL, &h) < 0)
             continue;
         hits++;
         RfVec3 local = rf_mat3_mul_vec(rf_mat3_transpose(r), rf_vec3_sub(h.point, c));

@@ -283,7 +283,8 @@ static void test_watertight_shared_edge(void)
             RfVec3 target = rf_vec3_lerp(p, q, rf_test_uniform(&rng, 0.0, 1.0));
             RfVec3 o = rand_vec(&rng, 30.0);
             RfRay r = rf_ray(o, rf_vec3_sub(target, o));
-            RfWatertightRay w = rf_watertight_ray(r);
+            RfWatertightRay w;
+            rf_watertight_ray(&r, &w);
             RfHit h;
             /* only rays that cross the surface (a and b on opposite sides of the ray's plane
              * through the edge) must hit; others pass the folded pair on one side */
@@ -309,7 +310,8 @@ static void test_watertight_shared_edge(void)
     {
         RfTriangle qa = {v3(0, 0, 0), v3(10, 0, 0), v3(10, 10, 0)}, qb = {v3(0, 0, 0), v3(10, 10, 0), v3(0, 10, 0)};
         RfRay r = rf_ray(v3(0, 0, 10), v3(0.30458447, 0.30458447, -0.9024725));
-        RfWatertightRay w = rf_watertight_ray(r);
+        RfWatertightRay w;
+        rf_watertight_ray(&r, &w);
         RfHit h;
         RF_CHECK(rf_intersect_triangle_watertight(&w, qa, 0.0, INF, &h) |
                  rf_intersect_triangle_watertight(&w, qb, 0.0, INF, &h));
@@ -333,7 +335,8 @@ static void test_watertight_exact_edge_sign(void)
     const double e = 0x1p-52;
     RfVec3 p = rf_vec3(1 + e, 1 + 2 * e, 1), q = rf_vec3(-1, -(1 + e), 1);
     RfTriangle inside = {p, q, rf_vec3(-1, 1, 1)}, outside = {p, q, rf_vec3(1, -1, 1)};
-    RfWatertightRay w = rf_watertight_ray(rf_ray(rf_vec3(0, 0, 0), rf_vec3(0, 0, 1)));
+    RfWatertightRay w;
+    rf_watertight_ray(&(RfRay){rf_vec3(0, 0, 0), rf_vec3(0, 0, 1)}, &w);
     RfHit h;
     double t;
     RF_CHECK(rf_intersect_triangle_watertight(&w, inside, 0.0, INF, &h));
@@ -374,7 +377,8 @@ static void test_watertight_closed_mesh(void)
                 const int *f = faces[j % 8];
                 d = rf_vec3_sub(rf_vec3_lerp(v[f[0]], v[f[1]], rf_test_uniform(&rng, 0, 1)), o);
             }
-            RfWatertightRay w = rf_watertight_ray(rf_ray(o, d));
+            RfWatertightRay w;
+            rf_watertight_ray(&(RfRay){o, d}, &w);
             int any = 0;
             RfHit h;
             for (int f = 0; f < 8; f++)

@@ -226,8 +226,8 @@ static void t_shadows_from_either_side(void)
         RfTracer *t = NULL;
         RF_CHECK_EQ_INT(rf_tracer_create(&s, &t), RF_OK);
         /* up from the floor and down from above the light: both cross the blocker */
-        RF_CHECK(rf_tracer_occluded(t, rf_ray(rf_vec3(0, 1e-6, 0), rf_vec3(0, 1, 0)), 0.0, 5.0));
-        RF_CHECK(rf_tracer_occluded(t, rf_ray(rf_vec3(0, 4.5, 0), rf_vec3(0, -1, 0)), 0.0, 4.0));
+        RF_CHECK(rf_tracer_occluded(t, &(RfRay){rf_vec3(0, 1e-6, 0), rf_vec3(0, 1, 0)}, 0.0, 5.0));
+        RF_CHECK(rf_tracer_occluded(t, &(RfRay){rf_vec3(0, 4.5, 0), rf_vec3(0, -1, 0)}, 0.0, 4.0));
         rf_tracer_free(t);
         /* and the render: the floor under the blocker is black (no ambient) */
         RfRenderOptions o = rf_render_options_default();
@@ -244,7 +244,8 @@ static void t_shadows_from_either_side(void)
             RfCamera cam;
             RfWindow w = rf_scene_camera_window(&s.camera, 9, 9);
             rf_camera_init(&cam, s.camera.eye, s.camera.target, s.camera.up, w.d, w.l, w.r, w.b, w.t, 9, 9);
-            int prim = rf_tracer_intersect(t2, rf_camera_ray(&cam, 4.5, 4.5, 0, 0), 0.0, HUGE_VAL, &h);
+            RfRay centre = rf_camera_ray(&cam, 4.5, 4.5, 0, 0);
+            int prim = rf_tracer_intersect(t2, &centre, 0.0, HUGE_VAL, &h);
             if (prim == 0 && img.data[3 * (4 * 9 + 4)] != 0.0f) /* the floor itself is seen: in shadow */
                 rf_test_fail(__FILE__, __LINE__, "%s: the floor under it is lit (%g)", blockers[i],
                              img.data[3 * (4 * 9 + 4)]);

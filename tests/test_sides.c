@@ -192,7 +192,7 @@ static void t_shadows_walk(void)
                 }
             }
             uint64_t last = 0;
-            RfRgb tr = rf_tracer_transmittance_at(t, ray, NULL, 0.0, tmax, &last);
+            RfRgb tr = rf_tracer_transmittance_at(t, &ray, NULL, 0.0, tmax, &last);
             bad += tr.r != expect || tr.g != expect || tr.b != expect;
         }
         if (bad)
@@ -223,8 +223,8 @@ static void t_shadows_walk(void)
             RfVec3 d = rf_vec3_sub(b, a);
             double len = rf_vec3_length(d);
             RfRay ray = rf_ray(a, rf_vec3_scale(d, 1.0 / len));
-            int occ = rf_tracer_occluded_cached(t, ray, 0.0, len, &c1);
-            RfRgb tr = rf_tracer_transmittance_at(t, ray, NULL, 0.0, len, &c2);
+            int occ = rf_tracer_occluded_cached(t, &ray, 0.0, len, &c1);
+            RfRgb tr = rf_tracer_transmittance_at(t, &ray, NULL, 0.0, len, &c2);
             double want = occ ? 0.0 : 1.0;
             occluded += occ;
             bad += tr.r != want || tr.g != want || tr.b != want;

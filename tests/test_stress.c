@@ -213,12 +213,12 @@ static void test_stress_offset_policy(void)
         rf_test_fail(__FILE__, __LINE__, "%s", err);
         return;
     }
-    RF_CHECK(rf_tracer_intersect(t, rf_ray(rf_vec3(0, 0, 300), rf_vec3(0, 0, -1)), 0.0, HUGE_VAL, &h) == 0);
+    RF_CHECK(rf_tracer_intersect(t, &(RfRay){rf_vec3(0, 0, 300), rf_vec3(0, 0, -1)}, 0.0, HUGE_VAL, &h) == 0);
     RF_CHECK_NEAR(h.scale, 1.0, 0, 0);
     RF_CHECK(fabs(rf_vec3_length(h.point) - 1.0) <= 2e-16); /* on the sphere, to an ulp */
-    RF_CHECK(rf_tracer_intersect(t, rf_ray(rf_vec3(10, 0.5, 5), rf_vec3(0, 0, -1)), 0.0, HUGE_VAL, &h) == 1);
+    RF_CHECK(rf_tracer_intersect(t, &(RfRay){rf_vec3(10, 0.5, 5), rf_vec3(0, 0, -1)}, 0.0, HUGE_VAL, &h) == 1);
     RF_CHECK_NEAR(h.scale, 10.0 * RF_RAY_OFFSET_CONE, 1e-15, 0);
-    RF_CHECK(rf_tracer_intersect(t, rf_ray(rf_vec3(-25, -1, 1e6), rf_vec3(0, 0, -1)), 0.0, HUGE_VAL, &h) == 2);
+    RF_CHECK(rf_tracer_intersect(t, &(RfRay){rf_vec3(-25, -1, 1e6), rf_vec3(0, 0, -1)}, 0.0, HUGE_VAL, &h) == 2);
     RF_CHECK_NEAR(h.scale, 30.0, 0, 0);
     RF_CHECK(h.point.z == -1.0); /* from the barycentric coordinates: exactly in the plane z = -1 */
     rf_tracer_free(t);

@@ -41,8 +41,13 @@ RfStatus rf_camera_set_lens(RfCamera *cam, double aperture_radius, double focal_
 
 /* The image-plane point (lambda1, lambda2, -d) in camera space for pixel coordinates (px, py). */
 RfVec3 rf_camera_plane_point(const RfCamera *cam, double px, double py);
-/* Camera space to world: x u + y v + z w (a direction; add the eye for a point). */
-RfVec3 rf_camera_to_world(const RfCamera *cam, RfVec3 c);
+/* Camera space to world: x u + y v + z w (a direction; add the eye for a point). Inline: every
+ * primary ray needs it, and a returned copy read back across its stores stalled. */
+static inline RfVec3 rf_camera_to_world(const RfCamera *cam, RfVec3 c)
+{
+    return rf_vec3_add(rf_vec3_add(rf_vec3_scale(cam->basis.u, c.x), rf_vec3_scale(cam->basis.v, c.y)),
+                       rf_vec3_scale(cam->basis.w, c.z));
+}
 
 /* The primary ray through (px, py). Pinhole (aperture 0): origin = eye, dir = s/|s| with s the
  * world image-plane vector. Lens open: the thin-lens ray through the lens point

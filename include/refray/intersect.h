@@ -49,9 +49,16 @@ int rf_intersect_sphere(RfRay ray, RfSphere s, RfSphereMethod method, double t_m
 /* The stable method's two roots t[0] <= t[1] (1), or none (0), with what a root's normal needs:
  * rf_intersect_sphere is these two routines, and the tracer's own loops use them directly. */
 typedef struct { double t[2]; RfVec3 v; double sq, a; } RfSphereRoots; /* sq = sqrt(D/4), a = <d,d> */
-int rf_sphere_roots(RfRay ray, RfSphere s, RfSphereRoots *out);
+int rf_sphere_roots(const RfRay *ray, const RfSphere *s, RfSphereRoots *out);
 /* The outward unit normal at root t[far]. */
-RfVec3 rf_sphere_root_normal(const RfSphereRoots *r, RfRay ray, RfSphere s, int far);
+static inline RfVec3 rf_sphere_root_normal(const RfSphereRoots *r, const RfRay *ray, const RfSphere *s, int far)
+{
+    /* p - center = f + t d = v -+ (sqrt(D/4)/a) d: no cancellation between a large t and the
+     * centre, so the normal of a far sphere keeps its digits (|v + x d| = r exactly). Inline:
+     * a returned copy read back across its stores stalled. */
+    double off = (r->sq > 0.0 ? r->sq : 0.0) / r->a; /* sqrt(D/4)/a; +0 for dq = -0 */
+    return rf_vec3_scale(rf_vec3_add(r->v, rf_vec3_scale(ray->dir, far ? off : -off)), 1.0 / s->radius);
+}
 
 /* ---- §3.5.2 plane in Hesse form <x, normal> = offset (normal need not be unit) ---- */
 
@@ -83,7 +90,8 @@ typedef struct {
     int lanes[8];
     int scalar;
 } RfWatertightRay;
-RfWatertightRay rf_watertight_ray(RfRay ray);
+/* Sets *w up for ray (in place: the set-up is read soon after, field by field). */
+void rf_watertight_ray(const RfRay *ray, RfWatertightRay *w);
 
 /* All three: a hit has l1, l2, l3 >= 0 (edges and vertices included) and t in [t_min, t_max);
  * normal = normalise((p2 - p1) x (p3 - p1)) (counter-clockwise side), not flipped to the ray.

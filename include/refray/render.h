@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "refray/image.h"
+#include "refray/numeric.h"
 #include "refray/parallel.h"
 #include "refray/scene.h"
 #include "refray/status.h"
@@ -171,7 +172,7 @@ typedef struct {
                                vertices or the plane's point; cones and hits in instances: of the
                                hit point and the ray's origin, times RF_RAY_OFFSET_CONE/_INSTANCE */
 } RfSurfaceHit;
-int rf_tracer_intersect(const RfTracer *tracer, RfRay ray, double t_min, double t_max, RfSurfaceHit *hit);
+int rf_tracer_intersect(const RfTracer *tracer, const RfRay *ray, double t_min, double t_max, RfSurfaceHit *hit);
 
 /* `refray trace`: every step of one pixel's rays, reported by the render kernels themselves as
  * they render it (RfRenderOptions.trace), so the trace is the renderer's own arithmetic. */
@@ -211,23 +212,23 @@ typedef struct RfMotionState RfMotionState;
 RfMotionState *rf_motion_state_new(const RfTracer *tracer);
 void rf_motion_state_free(RfMotionState *ms);
 void rf_motion_state_set(RfMotionState *ms, double time);
-int rf_tracer_intersect_at(const RfTracer *tracer, RfRay ray, const RfMotionState *ms, double t_min, double t_max,
+int rf_tracer_intersect_at(const RfTracer *tracer, const RfRay *ray, const RfMotionState *ms, double t_min, double t_max,
                            RfSurfaceHit *hit);
 /* 1 when anything is hit at t in [t_min, t_max), seen from either side: a shadow ray's
  * occlusion query (it stops at the first hit). */
-int rf_tracer_occluded(const RfTracer *tracer, RfRay ray, double t_min, double t_max);
+int rf_tracer_occluded(const RfTracer *tracer, const RfRay *ray, double t_min, double t_max);
 /* The same answer, with a cache (POV-Ray's "shadow cache"): *last holds the primitive that
  * occluded the previous query (0: none; keep one per light and thread), which is tested first;
  * *last then becomes the occluder found, or 0 when nothing occludes. */
-int rf_tracer_occluded_cached(const RfTracer *tracer, RfRay ray, double t_min, double t_max, uint64_t *last);
-int rf_tracer_occluded_cached_at(const RfTracer *tracer, RfRay ray, const RfMotionState *ms, double t_min,
+int rf_tracer_occluded_cached(const RfTracer *tracer, const RfRay *ray, double t_min, double t_max, uint64_t *last);
+int rf_tracer_occluded_cached_at(const RfTracer *tracer, const RfRay *ray, const RfMotionState *ms, double t_min,
                                  double t_max, uint64_t *last);
 /* Filtered shadows (RF_SHADOWS_FILTERED): the product, per channel, of the kt of every surface
  * the ray crosses at t in [t_min, t_max), each seen from either side, in the order met (a
  * sphere counts twice; two surfaces at exactly the same t once); (0, 0, 0) once the product is
  * 0 in every channel (a surface with kt = 0 blocks). *last as rf_tracer_occluded_cached, for
  * the primitives that block alone (kt = 0, outside instances). */
-RfRgb rf_tracer_transmittance_at(const RfTracer *tracer, RfRay ray, const RfMotionState *ms, double t_min,
+RfRgb rf_tracer_transmittance_at(const RfTracer *tracer, const RfRay *ray, const RfMotionState *ms, double t_min,
                                  double t_max, uint64_t *last);
 
 
@@ -237,7 +238,14 @@ RfRgb rf_tracer_transmittance_at(const RfTracer *tracer, RfRay ray, const RfMoti
  * scene's size or place (no floor). fixed_offset > 0 moves it by that absolute distance instead
  * (RfRenderOptions.fixed_offset, the verifier's planted bug: a scale-blind epsilon must be caught
  * by the acne measurement). */
-RfVec3 rf_hit_offset_origin(const RfSurfaceHit *h, RfVec3 dir, double fixed_offset);
+static inline RfVec3 rf_hit_offset_origin(const RfSurfaceHit *h, RfVec3 dir, double fixed_offset)
+{
+    /* inline: the kernel builds its shadow ray in registers (a returned copy read back across
+     * its stores stalled). A floor far below any coordinate a scene has keeps a hit at the
+     * origin off its surface. */
+    double eps = fixed_offset > 0.0 ? fixed_offset : RF_RAY_OFFSET_REL * (h->scale > 0x1p-900 ? h->scale : 0x1p-900);
+    return rf_vec3_add(h->point, rf_vec3_scale(h->normal, rf_vec3_dot(dir, h->normal) >= 0.0 ? eps : -eps));
+}
 
 /* Everything besides the scene that decides a render's pixels, as one line for an image header
  * ("640x480, 16 spp stratified, filter box 0.5, depth 8, seed 1[, local only][, adaptive ...]

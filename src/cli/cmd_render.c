@@ -147,7 +147,7 @@ static RfStatus primary_depth(const RfScene *scene, int width, int height, RfTil
             RfRay ray = rf_camera_ray(&cam, x + 0.5, y + 0.5, 0.0, 0.0);
             double cosw = -rf_vec3_dot(ray.dir, cam.basis.w);
             RfSurfaceHit h;
-            int hit = rf_tracer_intersect(tracer, ray, sc->hither > 0.0 ? sc->hither / cosw : 0.0, HUGE_VAL, &h);
+            int hit = rf_tracer_intersect(tracer, &ray, sc->hither > 0.0 ? sc->hither / cosw : 0.0, HUGE_VAL, &h);
             out->data[(size_t)(y - crop.y0) * (size_t)out->width + (size_t)(x - crop.x0)] =
                 hit >= 0 ? (float)(h.t * cosw) : INFINITY;
         }

@@ -106,7 +106,7 @@ void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
 static void tri_setup(const RfBvh *bvh, RfBvhRay *r)
 {
     const double o[3] = {r->ray.origin.x, r->ray.origin.y, r->ray.origin.z};
-    r->wr = rf_watertight_ray(r->ray);
+    rf_watertight_ray(&r->ray, &r->wr);
     r->wr.scalar = bvh->scalar; /* the scalar kernels throughout: the tests compare the two */
     r->fo[0] = (float)o[r->wr.kx];
     r->fo[1] = (float)o[r->wr.ky];
@@ -336,7 +336,7 @@ static inline int sphere_hit(const RfBvhOther *o, const RfRay *ray, double t_min
                              int mode, double *t, RfSphereRoots *roots)
 {
     RfSphereRoots r;
-    if (!rf_sphere_roots(*ray, o->sphere, &r))
+    if (!rf_sphere_roots(ray, &o->sphere, &r))
         return 0;
     unsigned sides = o->user >> 30;
     double lo = t_min;
@@ -345,7 +345,7 @@ static inline int sphere_hit(const RfBvhOther *o, const RfRay *ray, double t_min
         if (!(tc >= lo && (tc < lim || (tc == lim && o->key < lim_key))))
             continue;
         if (mode == NEAREST && sides != RF_BVH_SEE_BOTH) {
-            int front = rf_vec3_dot(ray->dir, rf_sphere_root_normal(&r, *ray, o->sphere, c)) < 0.0;
+            int front = rf_vec3_dot(ray->dir, rf_sphere_root_normal(&r, ray, &o->sphere, c)) < 0.0;
             if (front == (sides == RF_BVH_SEE_BACK)) { /* the hidden side: look beyond it */
                 lo = rf_next_up(tc);
                 continue;

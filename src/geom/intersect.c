@@ -136,23 +136,15 @@ RfSphereQuadratic rf_sphere_quadratic(RfRay ray, RfSphere s, RfSphereMethod meth
     return q;
 }
 
-int rf_sphere_roots(RfRay ray, RfSphere s, RfSphereRoots *out)
+int rf_sphere_roots(const RfRay *ray, const RfSphere *s, RfSphereRoots *out)
 {
     SphereParts p;
     double c;
-    if (!sphere_stable(ray, s, &p, &c, out->t, &out->sq))
+    if (!sphere_stable(*ray, *s, &p, &c, out->t, &out->sq))
         return 0;
     out->v = p.v;
     out->a = p.a;
     return 1;
-}
-
-/* p - center = f + t d = v -+ (sqrt(D/4)/a) d: no cancellation between a large t and the centre,
- * so the normal of a far sphere keeps its digits (|v + x d| = r exactly) */
-RfVec3 rf_sphere_root_normal(const RfSphereRoots *r, RfRay ray, RfSphere s, int far)
-{
-    double off = (r->sq > 0.0 ? r->sq : 0.0) / r->a; /* sqrt(D/4)/a; +0 for dq = -0 */
-    return rf_vec3_scale(rf_vec3_add(r->v, rf_vec3_scale(ray.dir, far ? off : -off)), 1.0 / s.radius);
 }
 
 /* The smallest root in [t_min, t_max) of t[0] <= t[1]: 0 (none), 1 (near) or 2 (far). */
@@ -180,10 +172,10 @@ int rf_intersect_sphere(RfRay ray, RfSphere s, RfSphereMethod method, double t_m
     /* t1 is the near side (origin outside); t2 when t1 is behind or before t_min (origin
      * inside: the far side) */
     RfSphereRoots r;
-    if (!rf_sphere_roots(ray, s, &r) || !(root = pick_root(r.t, t_min, t_max)))
+    if (!rf_sphere_roots(&ray, &s, &r) || !(root = pick_root(r.t, t_min, t_max)))
         return 0;
     hit->t = r.t[root - 1];
-    hit->normal = rf_sphere_root_normal(&r, ray, s, root == 2);
+    hit->normal = rf_sphere_root_normal(&r, &ray, &s, root == 2);
     return 1;
 }
 
@@ -290,40 +282,39 @@ static double comp(RfVec3 a, int k) { return k == 0 ? a.x : k == 1 ? a.y : a.z; 
 
 /* Woop, Benthin, Wald 2013: the axis kz with the largest |d| becomes z (kx, ky swapped when
  * d_kz < 0 to keep the winding), the shear (sx, sy, sz) maps d to (0, 0, 1). */
-RfWatertightRay rf_watertight_ray(RfRay ray)
+void rf_watertight_ray(const RfRay *rp, RfWatertightRay *w)
 {
-    RfWatertightRay w;
+    const RfRay ray = *rp;
     double ax = fabs(ray.dir.x), ay = fabs(ray.dir.y), az = fabs(ray.dir.z);
-    w.ray = ray;
-    w.kz = ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
-    w.kx = (w.kz + 1) % 3;
-    w.ky = (w.kx + 1) % 3;
-    if (comp(ray.dir, w.kz) < 0.0) {
-        int k = w.kx;
-        w.kx = w.ky;
-        w.ky = k;
+    w->ray = ray;
+    w->kz = ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
+    w->kx = (w->kz + 1) % 3;
+    w->ky = (w->kx + 1) % 3;
+    if (comp(ray.dir, w->kz) < 0.0) {
+        int k = w->kx;
+        w->kx = w->ky;
+        w->ky = k;
     }
-    double dz = comp(ray.dir, w.kz);
+    double dz = comp(ray.dir, w->kz);
 #if defined(__AVX__)
     /* the three divisions as one: the same IEEE quotient in each lane */
     double q[4];
-    _mm256_storeu_pd(q, _mm256_div_pd(_mm256_set_pd(1.0, 1.0, comp(ray.dir, w.ky), comp(ray.dir, w.kx)),
+    _mm256_storeu_pd(q, _mm256_div_pd(_mm256_set_pd(1.0, 1.0, comp(ray.dir, w->ky), comp(ray.dir, w->kx)),
                                       _mm256_set1_pd(dz)));
-    w.sx = q[0];
-    w.sy = q[1];
-    w.sz = q[2];
+    w->sx = q[0];
+    w->sy = q[1];
+    w->sz = q[2];
 #else
-    w.sx = comp(ray.dir, w.kx) / dz;
-    w.sy = comp(ray.dir, w.ky) / dz;
-    w.sz = 1.0 / dz;
+    w->sx = comp(ray.dir, w->kx) / dz;
+    w->sy = comp(ray.dir, w->ky) / dz;
+    w->sz = 1.0 / dz;
 #endif
     /* the vector kernel's lanes (kx, ky, kz, kz) as 32-bit halves, by kz and whether kx, ky swapped */
     static const int lanes[3][2][8] = {{{2, 3, 4, 5, 0, 1, 0, 1}, {4, 5, 2, 3, 0, 1, 0, 1}},
                                        {{4, 5, 0, 1, 2, 3, 2, 3}, {0, 1, 4, 5, 2, 3, 2, 3}},
                                        {{0, 1, 2, 3, 4, 5, 4, 5}, {2, 3, 0, 1, 4, 5, 4, 5}}};
-    memcpy(w.lanes, lanes[w.kz][w.kx != (w.kz + 1) % 3], sizeof w.lanes);
-    w.scalar = 0;
-    return w;
+    memcpy(w->lanes, lanes[w->kz][w->kx != (w->kz + 1) % 3], sizeof w->lanes);
+    w->scalar = 0;
 }
 
 /* The 2D edge function e(P,Q) = Px Qy - Py Qx with its sign exact for the given doubles:
@@ -467,7 +458,7 @@ int rf_intersect_triangle(RfRay ray, RfTriangle tri, RfTriangleMethod method, do
     case RF_TRIANGLE_MOLLER:
         return triangle_moller(ray, tri, t_min, t_max, hit);
     case RF_TRIANGLE_WATERTIGHT:
-        w = rf_watertight_ray(ray);
+        rf_watertight_ray(&ray, &w);
         return rf_intersect_triangle_watertight(&w, tri, t_min, t_max, hit);
     }
     return 0;

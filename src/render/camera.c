@@ -66,12 +66,6 @@ RfVec3 rf_camera_plane_point(const RfCamera *cam, double px, double py)
 #endif
 }
 
-RfVec3 rf_camera_to_world(const RfCamera *cam, RfVec3 c)
-{
-    return rf_vec3_add(rf_vec3_add(rf_vec3_scale(cam->basis.u, c.x), rf_vec3_scale(cam->basis.v, c.y)),
-                       rf_vec3_scale(cam->basis.w, c.z));
-}
-
 RfStatus rf_thin_lens_ray(RfVec3 pixel_dir, double lens_u, double lens_v, double aperture_radius,
                           double focal_distance, RfRay *out)
 {

@@ -17,7 +17,7 @@
 #define RF_TRACE_ON_JOB(job) (RF_KPARTS == RF_K_ALL && (job)->trace_log && (job)->trace_log->trace)
 #endif
 
-static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, int depth, double weight,
+static RfRgb RF_KNAME(trace)(const RfKernelJob *job, const RfRay *ray, double t_min, int depth, double weight,
                              RfRenderStats *st, uint64_t *shadow_cache, const RfPathSample *ps);
 
 /* One light sample's §3.6.2 Phong term at the hit: the shadow ray to the light (§3.8; opaque
@@ -49,7 +49,7 @@ static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHi
                                                 rf_vec3_scale(ls->l, ls->distance)), sr.origin));
         st->shadow_rays++;
         if (job->filtered_shadows) { /* the light through the transmitting surfaces on the way */
-            RfRgb tr = rf_tracer_transmittance_at(job->tracer, sr, RF_ON(RF_K_MOTION) ? ps->motion : NULL, 0.0,
+            RfRgb tr = rf_tracer_transmittance_at(job->tracer, &sr, RF_ON(RF_K_MOTION) ? ps->motion : NULL, 0.0,
                                                   dist, cache);
             if (RF_TRACE_ON(ps))
                 ev.transmittance = tr;
@@ -63,8 +63,8 @@ static inline int RF_KNAME(light_term)(const RfKernelJob *job, const RfSurfaceHi
             through = *ls;
             through.i = rf_rgb_mul(ls->i, tr);
             ls = &through;
-        } else if (RF_ON(RF_K_MOTION) ? rf_tracer_occluded_cached_at(job->tracer, sr, ps->motion, 0.0, dist, cache)
-                                      : rf_tracer_occluded_cached(job->tracer, sr, 0.0, dist, cache)) {
+        } else if (RF_ON(RF_K_MOTION) ? rf_tracer_occluded_cached_at(job->tracer, &sr, ps->motion, 0.0, dist, cache)
+                                      : rf_tracer_occluded_cached(job->tracer, &sr, 0.0, dist, cache)) {
             if (RF_TRACE_ON(ps)) {
                 ev.visible = 0, ev.transmittance = rf_rgb(0, 0, 0);
                 ps->log->trace(ps->log->trace_ctx, &ev);
@@ -169,7 +169,7 @@ static RfRgb RF_KNAME(secondary)(const RfKernelJob *job, const RfSurfaceHit *h, 
     st->secondary_rays++;
     if (ps->log)
         rf_kernel_log(ps->log, " -> %s ray (depth %d)", refracted ? "refracted" : "mirror", depth + 1);
-    return rf_rgb_add(color, rf_rgb_mul(w, RF_KNAME(trace)(job, ray, 0.0, depth + 1, weight * wmax, st, shadow_cache, ps)));
+    return rf_rgb_add(color, rf_rgb_mul(w, RF_KNAME(trace)(job, &ray, 0.0, depth + 1, weight * wmax, st, shadow_cache, ps)));
 }
 
 /* refray trace: reports the colour a ray returns (and its local part); returns it */
@@ -187,7 +187,7 @@ static inline RfRgb RF_KNAME(traced)(const RfPathSample *ps, int depth, RfRgb lo
 
 /* The colour seen along ray (hits in [t_min, inf)); depth 1 is the primary ray, weight the
  * product of the reflection/transmission weights on the way here. */
-static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, int depth, double weight,
+static RfRgb RF_KNAME(trace)(const RfKernelJob *job, const RfRay *ray, double t_min, int depth, double weight,
                              RfRenderStats *st, uint64_t *shadow_cache, const RfPathSample *ps)
 {
     RfSurfaceHit h;
@@ -213,7 +213,7 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
         ps->log->trace(ps->log->trace_ctx, &ev);
     }
     const RfMaterial *m = &job->materials[h.material];
-    RfVec3 v = rf_vec3_neg(rf_vec3_normalize(ray.dir));
+    RfVec3 v = rf_vec3_neg(rf_vec3_normalize(ray->dir));
     RfVec3 n = h.shading_normal;
     /* §3.6.2: emission + ka I_a + the sum over the lights of the diffuse and specular terms */
     RfRgb color = rf_rgb(0, 0, 0);
@@ -318,24 +318,24 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, RfRay ray, double t_min, in
 }
 
 /* refray trace: a camera sample's image position and primary ray */
-static inline void RF_KNAME(trace_sample)(const RfPathSample *ps, double px, double py, RfRay ray)
+static inline void RF_KNAME(trace_sample)(const RfPathSample *ps, double px, double py, const RfRay *ray)
 {
     if (RF_TRACE_ON(ps)) {
         RfTraceEvent ev;
         memset(&ev, 0, sizeof ev);
         ev.kind = RF_TRACE_SAMPLE, ev.depth = 1, ev.sample = (int)ps->k, ev.samples = (int)ps->n;
-        ev.px = px, ev.py = py, ev.ray = ray;
+        ev.px = px, ev.py = py, ev.ray = *ray;
         ps->log->trace(ps->log->trace_ctx, &ev);
     }
 }
 
 /* The primary ray's colour: the hither plane, the trace, the invalid-sample rule. */
-static RfRgb RF_KNAME(camera_ray)(const RfKernelJob *job, RfRay ray, const RfPathSample *ps, RfRenderStats *st,
+static RfRgb RF_KNAME(camera_ray)(const RfKernelJob *job, const RfRay *ray, const RfPathSample *ps, RfRenderStats *st,
                                   uint64_t *shadow_cache)
 {
     const RfCamera *cam = &job->camera;
     /* the hither plane: nothing nearer than `hither` along the view axis -w */
-    double t_min = job->hither > 0.0 ? job->hither / -rf_vec3_dot(ray.dir, cam->basis.w) : 0.0;
+    double t_min = job->hither > 0.0 ? job->hither / -rf_vec3_dot(ray->dir, cam->basis.w) : 0.0;
     st->primary_rays++;
     RfRgb c = RF_KNAME(trace)(job, ray, t_min, 1, 1.0, st, shadow_cache, ps);
     if (!rf_kernel_rgb_valid(c)) {
@@ -370,8 +370,8 @@ static RfRgb RF_KNAME(camera_sample)(const RfKernelJob *job, double px, double p
         rf_motion_state_set(ps->motion, ps->time);
     }
     RfRay ray = rf_camera_ray(cam, px, py, lens[0], lens[1]);
-    RF_KNAME(trace_sample)(ps, px, py, ray);
-    return RF_KNAME(camera_ray)(job, ray, ps, st, shadow_cache);
+    RF_KNAME(trace_sample)(ps, px, py, &ray);
+    return RF_KNAME(camera_ray)(job, &ray, ps, st, shadow_cache);
 }
 
 
@@ -395,8 +395,8 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
                 } else { /* the pixel centre: rf_camera_ray's plane point, computed per row and column */
                     RfVec3 c = rf_vec3(job->column_x[x], job->row_y[y], -cam->d);
                     RfRay ray = rf_ray(cam->eye, rf_vec3_normalize(rf_camera_to_world(cam, c)));
-                    RF_KNAME(trace_sample)(&ps, x + 0.5, y + 0.5, ray);
-                    sum = RF_KNAME(camera_ray)(job, ray, &ps, st, shadow_cache);
+                    RF_KNAME(trace_sample)(&ps, x + 0.5, y + 0.5, &ray);
+                    sum = RF_KNAME(camera_ray)(job, &ray, &ps, st, shadow_cache);
                 }
             } else {
                 RfRgb wsum_c = rf_rgb(0, 0, 0), sq = rf_rgb(0, 0, 0);

@@ -626,7 +626,7 @@ again:
         if (it.sub >= 0) {
             RfWatertightRay own;
             if (!wr) {
-                own = rf_watertight_ray(*rp);
+                rf_watertight_ray(rp, &own);
                 wr = &own;
             }
             ok = rf_intersect_triangle_watertight(wr, item_triangle(q->tracer, it), t_min, t_max, &h);
@@ -704,7 +704,8 @@ static int trace_level(const Level *lv, Query *q, const RfRay *rp, double t_min,
     RfBvhRay br;
     if (q->tracer->opt.brute_force) {
         /* every item, in key order, with the double kernels alone: the reference for the BVH */
-        RfWatertightRay wr = rf_watertight_ray(*rp);
+        RfWatertightRay wr;
+        rf_watertight_ray(rp, &wr);
         for (int j = 0; j < lv->bvh_count; j++) {
             uint64_t key = item_key(lv->items[lv->bvh_items[j]]);
             double t;
@@ -740,7 +741,7 @@ static int trace_level(const Level *lv, Query *q, const RfRay *rp, double t_min,
         } else {
             q->hit.t = bt;
             q->hit.l[0] = q->hit.l[1] = q->hit.l[2] = 0.0;
-            q->hit.normal = rf_sphere_root_normal(&best.roots, *rp, *best.sphere, best.far);
+            q->hit.normal = rf_sphere_root_normal(&best.roots, rp, best.sphere, best.far);
         }
         q->item = key_item(bk);
         q->material = (int)(best.user & USER_MATERIAL);
@@ -763,37 +764,39 @@ static inline void query_init(Query *q, const RfTracer *t, int shadow, int both,
 }
 
 /* The nearest (or, shadow = 1, any) hit in [t_min, t_max); returns 1 with q->hit/q->item. */
-static int trace_query(const RfTracer *t, Query *q, RfRay ray, double t_min, double t_max)
+static int trace_query(const RfTracer *t, Query *q, const RfRay *ray, double t_min, double t_max)
 {
     uint64_t key = 0;
     q->tracer = t;
     q->instanced = 0;
-    return trace_level(&t->world, q, &ray, t_min, &t_max, &key);
+    return trace_level(&t->world, q, ray, t_min, &t_max, &key);
 }
 
-int rf_tracer_occluded(const RfTracer *t, RfRay ray, double t_min, double t_max)
+int rf_tracer_occluded(const RfTracer *t, const RfRay *rp, double t_min, double t_max)
 {
     Query q;
+    const RfRay ray = rf_ray_read(rp);
     query_init(&q, t, 1, 0, NULL);
-    return trace_query(t, &q, ray, t_min, t_max);
+    return trace_query(t, &q, &ray, t_min, t_max);
 }
 
-int rf_tracer_occluded_cached(const RfTracer *t, RfRay ray, double t_min, double t_max, uint64_t *last)
+int rf_tracer_occluded_cached(const RfTracer *t, const RfRay *ray, double t_min, double t_max, uint64_t *last)
 {
     return rf_tracer_occluded_cached_at(t, ray, NULL, t_min, t_max, last);
 }
 
-int rf_tracer_occluded_cached_at(const RfTracer *t, RfRay ray, const RfMotionState *ms, double t_min, double t_max,
-                                 uint64_t *last)
+int rf_tracer_occluded_cached_at(const RfTracer *t, const RfRay *rp, const RfMotionState *ms, double t_min,
+                                 double t_max, uint64_t *last)
 {
     Query q;
+    const RfRay ray = rf_ray_read(rp);
     query_init(&q, t, 1, 0, ms);
     if (*last) { /* the occluder of the last query first: neighbouring shadow rays share it */
         double tt;
         if (hit_item(&q, key_item(*last), &ray, NULL, t_min, t_max, &tt))
             return 1;
     }
-    if (!trace_query(t, &q, ray, t_min, t_max)) {
+    if (!trace_query(t, &q, &ray, t_min, t_max)) {
         *last = 0; /* in the light: the next ray likely is too, and would test the cache in vain */
         return 0;
     }
@@ -801,10 +804,11 @@ int rf_tracer_occluded_cached_at(const RfTracer *t, RfRay ray, const RfMotionSta
     return 1;
 }
 
-RfRgb rf_tracer_transmittance_at(const RfTracer *t, RfRay ray, const RfMotionState *ms, double t_min, double t_max,
-                                 uint64_t *last)
+RfRgb rf_tracer_transmittance_at(const RfTracer *t, const RfRay *rp, const RfMotionState *ms, double t_min,
+                                 double t_max, uint64_t *last)
 {
     const RfRgb zero = rf_rgb(0, 0, 0);
+    const RfRay ray = rf_ray_read(rp);
     Query q;
     query_init(&q, t, 1, 0, ms);
     /* the last primitive that blocked alone: any hit on it gives 0, as the walk would */
@@ -814,7 +818,7 @@ RfRgb rf_tracer_transmittance_at(const RfTracer *t, RfRay ray, const RfMotionSta
     q.shadow = 0;
     q.both = 1;
     /* POV-Ray's walk: the nearest crossing, its kt, on from just beyond it */
-    while (t_min < t_max && trace_query(t, &q, ray, t_min, t_max)) {
+    while (t_min < t_max && trace_query(t, &q, &ray, t_min, t_max)) {
         RfRgb kt = t->scene->materials[q.material].kt;
         tr = rf_rgb_mul(tr, kt);
         if (!(tr.r > 0.0 || tr.g > 0.0 || tr.b > 0.0)) {
@@ -829,17 +833,18 @@ RfRgb rf_tracer_transmittance_at(const RfTracer *t, RfRay ray, const RfMotionSta
     return tr;
 }
 
-int rf_tracer_intersect(const RfTracer *t, RfRay ray, double t_min, double t_max, RfSurfaceHit *out)
+int rf_tracer_intersect(const RfTracer *t, const RfRay *ray, double t_min, double t_max, RfSurfaceHit *out)
 {
     return rf_tracer_intersect_at(t, ray, NULL, t_min, t_max, out);
 }
 
-int rf_tracer_intersect_at(const RfTracer *t, RfRay ray, const RfMotionState *ms, double t_min, double t_max,
+int rf_tracer_intersect_at(const RfTracer *t, const RfRay *rp, const RfMotionState *ms, double t_min, double t_max,
                            RfSurfaceHit *out)
 {
     Query q;
+    const RfRay ray = rf_ray_read(rp);
     query_init(&q, t, 0, t->opt.two_sided, ms);
-    if (!trace_query(t, &q, ray, t_min, t_max))
+    if (!trace_query(t, &q, &ray, t_min, t_max))
         return -1;
     const RfScene *s = t->scene;
     out->t = q.hit.t;
@@ -902,17 +907,3 @@ int rf_tracer_intersect_at(const RfTracer *t, RfRay ray, const RfMotionState *ms
     }
     return out->prim;
 }
-
-/* ---- the self-intersection policy ---- */
-
-
-/* A point moved off the surface to the side the new ray leaves by (DESIGN.md numeric policy:
- * RF_RAY_OFFSET_REL, numeric.h), so that the new ray does not hit its own surface again. The
- * scale is max(1, |p|inf), a NaN coordinate ignored (as fmax does, without its library call). */
-RfVec3 rf_hit_offset_origin(const RfSurfaceHit *h, RfVec3 dir, double fixed_offset)
-{
-    /* a floor far below any coordinate a scene has keeps a hit at the origin off its surface */
-    double eps = fixed_offset > 0.0 ? fixed_offset : RF_RAY_OFFSET_REL * (h->scale > 0x1p-900 ? h->scale : 0x1p-900);
-    return rf_vec3_add(h->point, rf_vec3_scale(h->normal, rf_vec3_dot(dir, h->normal) >= 0.0 ? eps : -eps));
-}
-
