@@ -24,17 +24,6 @@ static inline float fmaxf_(float a, float b) { return b > a ? b : a; }
 /* float unit roundoff */
 #define U32 0x1p-24
 
-#if RF_BVH_AVX
-/* One double, loaded alone: the empty asm keeps the compiler from merging neighbouring loads
- * into one wide load (which a store forwarding cannot serve from narrower stores). */
-static inline __m128d load_piece(const double *p)
-{
-    __m128d v = _mm_load_sd(p);
-    __asm__("" : "+x"(v));
-    return v;
-}
-#endif
-
 void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
 {
     (void)bvh;
@@ -48,17 +37,13 @@ void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
      * be guesses per ray. The AVX path does the three axes in lanes, each lane the scalar
      * path's operations in its order (the same floats). */
 #if RF_BVH_AVX
-    /* the ray read and copied in 8-byte pieces: its caller has just stored it, and a wider load
-     * across two of its stores would wait for them to retire (no store forwarding; this load
-     * was a quarter of the set-up's time) */
-    __m128d ox = load_piece(&rp->origin.x), oy = load_piece(&rp->origin.y), oz = load_piece(&rp->origin.z);
-    __m128d dx = load_piece(&rp->dir.x), dy = load_piece(&rp->dir.y), dz = load_piece(&rp->dir.z);
-    _mm_store_sd(&r->ray.origin.x, ox);
-    _mm_store_sd(&r->ray.origin.y, oy);
-    _mm_store_sd(&r->ray.origin.z, oz);
-    _mm_store_sd(&r->ray.dir.x, dx);
-    _mm_store_sd(&r->ray.dir.y, dy);
-    _mm_store_sd(&r->ray.dir.z, dz);
+    /* the ray read in 8-byte pieces (rf_ray_read): its caller has just stored it, and a wider
+     * load across two of its stores would wait for them to retire (this load was a quarter of
+     * the set-up's time) */
+    const RfRay ray = rf_ray_read(rp);
+    r->ray = ray;
+    __m128d ox = _mm_set_sd(ray.origin.x), oy = _mm_set_sd(ray.origin.y), oz = _mm_set_sd(ray.origin.z);
+    __m128d dx = _mm_set_sd(ray.dir.x), dy = _mm_set_sd(ray.dir.y), dz = _mm_set_sd(ray.dir.z);
     const __m128 sign = _mm_set1_ps(-0.0f);
     __m256d dd = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_unpacklo_pd(dx, dy)),
                                       _mm_unpacklo_pd(dz, _mm_set_sd(1.0)), 1);
@@ -78,7 +63,7 @@ void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
     r->near_hi[1] = (m >> 1) & 1;
     r->near_hi[2] = (m >> 2) & 1;
 #else
-    const RfRay ray = *rp;
+    const RfRay ray = rf_ray_read(rp);
     r->ray = ray;
     const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
     const double d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
