@@ -284,7 +284,7 @@ static double comp(RfVec3 a, int k) { return k == 0 ? a.x : k == 1 ? a.y : a.z; 
  * d_kz < 0 to keep the winding), the shear (sx, sy, sz) maps d to (0, 0, 1). */
 void rf_watertight_ray(const RfRay *rp, RfWatertightRay *w)
 {
-    const RfRay ray = *rp;
+    const RfRay ray = rf_ray_read(rp);
     double ax = fabs(ray.dir.x), ay = fabs(ray.dir.y), az = fabs(ray.dir.z);
     w->ray = ray;
     w->kz = ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
@@ -493,7 +493,7 @@ int rf_intersect_cone_framed(const RfRay *rp, const RfCone *cp, const RfConeFram
 {
     if (frame->degenerate)
         return 0;
-    const RfRay ray = *rp;
+    const RfRay ray = rf_ray_read(rp);
     const RfCone cone = *cp;
     const RfVec3 k = frame->k;
     const double h = frame->h, m = frame->m;

@@ -604,7 +604,7 @@ static int hit_instance(Query *q, const RfPrimitive *p, RfRay ray, double t_min,
 static int hit_item(Query *q, Item it, const RfRay *rp, const RfWatertightRay *wr, double t_min, double t_max,
                     double *t)
 {
-    const RfRay ray = *rp;
+    const RfRay ray = rf_ray_read(rp); /* (ray.h) */
     const RfScene *s = q->tracer->scene;
     const RfPrimitive *p = &s->prims[it.prim];
     RfHit h;
