@@ -218,6 +218,26 @@ static uint32_t rf_cell_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n)
     return K->dimension == 0 ? k : rf_permute(k, n, &K->order);
 }
 
+/* Stratified sample k of n (side = rf_isqrt(n), which a run of samples computes once). */
+static inline void stratified_2d(const RfSampleKeys *K, uint32_t k, uint32_t n, uint32_t side, double out[2])
+{
+    k %= n;
+    double u = rf_rng_uniform_at(K->stream, k, 2 * K->dimension), v = rf_rng_uniform_at(K->stream, k, 2 * K->dimension + 1);
+    uint32_t c = rf_cell_keyed(K, k, n);
+    if (side * side == n) {
+        /* the operations of the renderer's k x k jitter, in the same order; the clamp only
+         * acts when (side - 1) + u rounds up to side, which the renderer let through as 1.0 */
+        out[0] = rf_below_one(((double)(c % side) + u) / (double)side);
+        out[1] = rf_below_one(((double)(c / side) + v) / (double)side);
+    } else {
+        /* Latin hypercube: column c, row a second permutation of c */
+        RfPermuteKeys lhs = rf_permute_keys(rf_key_tag(K->base, K->dimension, RF_KEY_LHS_Y));
+        uint32_t r = rf_permute(c, n, &lhs);
+        out[0] = rf_below_one(((double)c + u) / (double)n);
+        out[1] = rf_below_one(((double)r + v) / (double)n);
+    }
+}
+
 void rf_sample_2d_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n, double out[2])
 {
     uint32_t du = 2 * K->dimension, dv = 2 * K->dimension + 1;
@@ -235,24 +255,9 @@ void rf_sample_2d_keyed(const RfSampleKeys *K, uint32_t k, uint32_t n, double ou
         out[1] = ((double)(c / a) + 0.5) / (double)b;
         return;
     }
-    case RF_SAMPLER_STRATIFIED: {
-        k %= n;
-        double u = rf_rng_uniform_at(K->stream, k, du), v = rf_rng_uniform_at(K->stream, k, dv);
-        uint32_t c = rf_cell_keyed(K, k, n), side = rf_isqrt(n);
-        if (side * side == n) {
-            /* the operations of the renderer's k x k jitter, in the same order; the clamp only
-             * acts when (side - 1) + u rounds up to side, which the renderer let through as 1.0 */
-            out[0] = rf_below_one(((double)(c % side) + u) / (double)side);
-            out[1] = rf_below_one(((double)(c / side) + v) / (double)side);
-        } else {
-            /* Latin hypercube: column c, row a second permutation of c */
-            RfPermuteKeys lhs = rf_permute_keys(rf_key_tag(K->base, K->dimension, RF_KEY_LHS_Y));
-            uint32_t r = rf_permute(c, n, &lhs);
-            out[0] = rf_below_one(((double)c + u) / (double)n);
-            out[1] = rf_below_one(((double)r + v) / (double)n);
-        }
+    case RF_SAMPLER_STRATIFIED:
+        stratified_2d(K, k, n, rf_isqrt(n), out);
         return;
-    }
     case RF_SAMPLER_SOBOL: {
         /* the index of sample k in the sequence: the nested scramble applied to the integer k
          * (Burley 2020 §4, "shuffling"). Bit j of i is bit j of k flipped by a function of the
@@ -336,6 +341,11 @@ void rf_sample_2d_keyed_run(const RfSampleKeys *K, uint32_t k0, uint32_t count, 
         for (; j + 4 <= count; j += 4)
             rf_sobol4(K, k0 + j, out + j);
 #endif
+    if (K->sampler == RF_SAMPLER_STRATIFIED && n > 0) { /* the strata's side once for the run */
+        uint32_t side = rf_isqrt(n);
+        for (; j < count; j++)
+            stratified_2d(K, k0 + j, n, side, out[j]);
+    }
     for (; j < count; j++)
         rf_sample_2d_keyed(K, k0 + j, n, out[j]);
 }
