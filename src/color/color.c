@@ -492,8 +492,14 @@ RfStatus rf_metamer(int first_nm, int n, const double *p1, double fraction, doub
         RfVec3 x, l;
         for (int i = 0; i < n; i++)
             bump[k * n + i] = sin((k + 1) * RF_PI * i / (n - 1));
-        rf_spectrum_integrate(RF_CMF_XYZ_1931, lam, bump + k * n, n, &x);
-        rf_spectrum_integrate(RF_CMF_LMS_2006, lam, bump + k * n, n, &l);
+        RfStatus si = rf_spectrum_integrate(RF_CMF_XYZ_1931, lam, bump + k * n, n, &x);
+        if (si == RF_OK)
+            si = rf_spectrum_integrate(RF_CMF_LMS_2006, lam, bump + k * n, n, &l);
+        if (si != RF_OK) {
+            free(bump);
+            free(lam);
+            return si;
+        }
         double r[6] = {x.x, x.y, x.z, l.x, l.y, l.z};
         for (int j = 0; j < 6; j++)
             resp[j][k] = r[j];

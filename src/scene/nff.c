@@ -71,6 +71,7 @@ static RfStatus read_view(NffReader *r, const RfToken *v)
     RfSceneCamera *c = &s->camera;
     RfToken kw;
     RfStatus st;
+    memset(&kw, 0, sizeof kw); /* set by view_key on success; -O3 cannot see that */
     if (s->has_camera)
         return rf_lex_error(lx, v->line, v->col, "second viewpoint (v): the scene has one camera");
     memset(c, 0, sizeof *c);
