@@ -205,7 +205,7 @@ static void t_conventions(void)
                                                                           : s.bin;
         for (int v = 0; v < 2; v++) {
             RUN("'%s'%s %s", bin, sub ? sub : "", v ? "-V" : "--version");
-            snprintf(want, sizeof want, "%s%s 0.1.0\n", strchr(tools[i], '-') ? tools[i] : "refray",
+            snprintf(want, sizeof want, "%s%s 0.2.0\n", strchr(tools[i], '-') ? tools[i] : "refray",
                      strchr(tools[i], '-') ? " (refray)" : "");
             rf_test_checks++;
             if (code != 0 || strcmp(out, want) != 0)

@@ -334,7 +334,7 @@ static void test_exr_attributes(void)
     char *v = NULL;
     const char *long_name = "refray.a.name.longer.than.thirty.one.chars";
     const RfImageAttr attrs[] = {
-        {"refray.version", "0.1.0"},
+        {"refray.version", "0.2.0"},
         {"refray.settings", "spp=16\nmaxdepth=5\nscene=\"scenes/whitted.rf\""},
         {"refray.renderTime", "12.345 s"},
         {"refray.cflags", "-std=c99 -O2 -ffp-contract=off"},
