@@ -1,7 +1,7 @@
 /* The BVH against brute force, ray by ray: the same nearest hit (same key, same t bit for bit)
- * and the same occlusion answer, for triangles (tested by the BVH) mixed with spheres (tested by
- * the caller), with the vector and the scalar kernels, on random scenes, degenerate ones and
- * rays through shared edges. */
+ * and the same occlusion answer, for triangles and cones (tested by the BVH) mixed with spheres
+ * (tested by the BVH or by the caller), with the vector and the scalar kernels, on random
+ * scenes, degenerate ones and rays through shared edges. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -16,7 +16,26 @@ typedef struct {
     int *sides;
     RfSphere *balls;
     long tests; /* caller's item tests */
+    int n_cones; /* after the spheres, with their sides */
+    RfCone *cones;
+    int *cone_sides;
 } Scene;
+
+static int item_total(const Scene *s) { return s->n_tris + s->n_balls + s->n_cones; }
+
+/* The first hit of cone i at t >= t_min whose side a nearest query sees (a hidden side passes
+ * the ray on), or, sided = 0, any hit. */
+static int cone_first(const Scene *s, int i, const RfRay *ray, double t_min, double t_max, int sided, RfHit *h)
+{
+    RfConeFrame f = rf_cone_frame(s->cones[i]);
+    while (rf_intersect_cone_framed(ray, &s->cones[i], &f, t_min, t_max, 1, h)) {
+        int side = s->cone_sides[i];
+        if (!sided || side == RF_BVH_SEE_BOTH || (rf_vec3_dot(ray->dir, h->normal) < 0.0) == (side == RF_BVH_SEE_FRONT))
+            return 1;
+        t_min = nextafter(h->t, HUGE_VAL);
+    }
+    return 0;
+}
 
 static uint64_t key_of(int item) { return (uint64_t)item + 1; }
 
@@ -31,6 +50,18 @@ static void describe(void *ctx, int item, RfBvhItem *out)
         out->kind = RF_BVH_TRIANGLE;
         out->tri = s->tris[item];
         out->sides = s->sides[item];
+        return;
+    }
+    if (item >= s->n_tris + s->n_balls) {
+        int i = item - s->n_tris - s->n_balls;
+        const RfCone *c = &s->cones[i];
+        out->kind = RF_BVH_CONE;
+        out->cone = *c;
+        out->frame = rf_cone_frame(*c);
+        out->sides = s->cone_sides[i];
+        double r = fmax(c->base_radius, c->apex_radius); /* a loose box is still a box */
+        out->box.lo = rf_vec3(fmin(c->base.x, c->apex.x) - r, fmin(c->base.y, c->apex.y) - r, fmin(c->base.z, c->apex.z) - r);
+        out->box.hi = rf_vec3(fmax(c->base.x, c->apex.x) + r, fmax(c->base.y, c->apex.y) + r, fmax(c->base.z, c->apex.z) + r);
         return;
     }
     const RfSphere *b = &s->balls[item - s->n_tris];
@@ -69,10 +100,18 @@ static RfBvhHit brute_nearest(const Scene *s, RfRay ray, double t_min, double t_
     RfWatertightRay wr;
     rf_watertight_ray(&ray, &wr);
     *occluded = 0;
-    for (int i = 0; i < s->n_tris + s->n_balls; i++) {
+    for (int i = 0; i < item_total(s); i++) {
         double t;
         RfHit h;
-        if (i < s->n_tris) {
+        if (i >= s->n_tris + s->n_balls) {
+            int c = i - s->n_tris - s->n_balls;
+            *occluded |= cone_first(s, c, &ray, t_min, t_max, 0, &h);
+            if (!cone_first(s, c, &ray, t_min, HUGE_VAL, 1, &h))
+                continue;
+            t = h.t;
+            if (t < best.t)
+                best.normal = h.normal;
+        } else if (i < s->n_tris) {
             if (!rf_intersect_triangle_watertight(&wr, s->tris[i], t_min, HUGE_VAL, &h))
                 continue;
             t = h.t;
@@ -107,7 +146,7 @@ static void check_rays(Scene *s, const RfRay *rays, int n, double t_max, const c
 {
     for (int scalar = 0; scalar < 2; scalar++) {
         RfBvh bvh;
-        RfBvhDesc d = {s->n_tris + s->n_balls, describe, s, 2, scalar};
+        RfBvhDesc d = {item_total(s), describe, s, 2, scalar};
         RF_CHECK_EQ_INT(rf_bvh_build(&bvh, &d), RF_OK);
         RF_CHECK(bvh.depth < 64);
         int bad = 0;
@@ -126,7 +165,9 @@ static void check_rays(Scene *s, const RfRay *rays, int n, double t_max, const c
             if (gocc) {
                 int item = (int)(occ_key - 1), occ1 = 0;
                 RfHit hh;
-                if (item < s->n_tris) {
+                if (item >= s->n_tris + s->n_balls) {
+                    occ1 = cone_first(s, item - s->n_tris - s->n_balls, &rays[i], 0.0, t_max, 0, &hh);
+                } else if (item < s->n_tris) {
                     RfWatertightRay wr1;
                     rf_watertight_ray(&rays[i], &wr1);
                     occ1 = rf_intersect_triangle_watertight(&wr1, s->tris[item], 0.0, t_max, &hh);
@@ -142,9 +183,13 @@ static void check_rays(Scene *s, const RfRay *rays, int n, double t_max, const c
                              (unsigned long long)want.key, want.t, occ);
                 bad = 1;
             }
-            /* a triangle's or sphere's user bits come back with it */
-            if ((got.tri || got.sphere) && got.user != (uint32_t)(got.key - 1))
+            /* a triangle's, sphere's or cone's user bits come back with it, a cone's normal too */
+            if ((got.tri || got.sphere || got.cone) && got.user != (uint32_t)(got.key - 1))
                 rf_test_fail(__FILE__, __LINE__, "%s: user bits %u for key %llu", what, got.user, (unsigned long long)got.key);
+            if (got.cone && got.key == want.key &&
+                (got.normal.x != want.normal.x || got.normal.y != want.normal.y || got.normal.z != want.normal.z))
+                rf_test_fail(__FILE__, __LINE__, "%s: cone normal of key %llu differs", what, (unsigned long long)got.key);
+            rf_test_checks += got.cone != NULL;
         }
         rf_bvh_free(&bvh);
     }
@@ -154,7 +199,7 @@ static void t_bvh_random(void)
 {
     RfTestRng r = {11};
     enum { NT = 3000, NB = 800, RAYS = 6000 };
-    Scene s = {NT, NB, malloc(sizeof(RfTriangle) * NT), malloc(sizeof(int) * NT), malloc(sizeof(RfSphere) * NB), 0};
+    Scene s = {NT, NB, malloc(sizeof(RfTriangle) * NT), malloc(sizeof(int) * NT), malloc(sizeof(RfSphere) * NB), 0, 0, NULL, NULL};
     for (int i = 0; i < NT; i++) {
         RfVec3 c = rf_vec3(rf_test_uniform(&r, -10, 10), rf_test_uniform(&r, -10, 10), rf_test_uniform(&r, -10, 10));
         RfVec3 *p[3] = {&s.tris[i].p1, &s.tris[i].p2, &s.tris[i].p3};
@@ -191,7 +236,7 @@ static void t_bvh_shared_edges(void)
     enum { N = 24 };
     const double offsets[] = {0.0, 1e5, 3e7};
     for (size_t o = 0; o < sizeof offsets / sizeof offsets[0]; o++) {
-        Scene s = {2 * N * N, 0, malloc(sizeof(RfTriangle) * 2 * N * N), malloc(sizeof(int) * 2 * N * N), NULL, 0};
+        Scene s = {2 * N * N, 0, malloc(sizeof(RfTriangle) * 2 * N * N), malloc(sizeof(int) * 2 * N * N), NULL, 0, 0, NULL, NULL};
         double h = 0.125, off = offsets[o];
         int t = 0;
         for (int i = 0; i < N; i++)
@@ -266,7 +311,7 @@ static void t_bvh_degenerate(void)
     RfTestRng r = {12};
     RfBvh bvh;
     /* empty */
-    Scene e = {0, 0, NULL, NULL, NULL, 0};
+    Scene e = {0, 0, NULL, NULL, NULL, 0, 0, NULL, NULL};
     RfBvhDesc d = {0, describe, &e, 1, 0};
     RF_CHECK_EQ_INT(rf_bvh_build(&bvh, &d), RF_OK);
     RfBvhRay br;
@@ -279,7 +324,7 @@ static void t_bvh_degenerate(void)
     rf_bvh_free(&bvh);
     /* 300 identical spheres and 300 identical triangles: no SAH split exists */
     enum { N = 300 };
-    Scene s = {N, N, malloc(sizeof(RfTriangle) * N), malloc(sizeof(int) * N), malloc(sizeof(RfSphere) * N), 0};
+    Scene s = {N, N, malloc(sizeof(RfTriangle) * N), malloc(sizeof(int) * N), malloc(sizeof(RfSphere) * N), 0, 0, NULL, NULL};
     for (int i = 0; i < N; i++) {
         s.balls[i].center = rf_vec3(1, 2, 3);
         s.balls[i].radius = 0.5;
@@ -325,7 +370,7 @@ static void t_bvh_small_root(void)
             tris[2 * q + h] = t;
             sides[2 * q + h] = RF_BVH_SEE_BOTH;
         }
-    Scene room = {10, 2, tris, sides, balls, 0};
+    Scene room = {10, 2, tris, sides, balls, 0, 0, NULL, NULL};
     RfBvh bvh;
     RfBvhDesc d = {12, describe, &room, 1, 0};
     RF_CHECK_EQ_INT(rf_bvh_build(&bvh, &d), RF_OK);
@@ -342,7 +387,7 @@ static void t_bvh_small_root(void)
     for (int n = 1; n <= 12; n++)
         for (int rep = 0; rep < 4; rep++) {
             RfSphere few[12];
-            Scene s = {0, 0, NULL, NULL, few, 0};
+            Scene s = {0, 0, NULL, NULL, few, 0, 0, NULL, NULL};
             s.n_tris = n > 10 ? 10 : (int)rf_test_uniform(&r, 0, n + 0.999);
             s.n_balls = n - s.n_tris;
             RfTriangle mine[10];
@@ -369,7 +414,53 @@ static void t_bvh_small_root(void)
         }
 }
 
+/* Cones tested by the BVH itself (RF_BVH_CONE), among triangles and spheres: open cylinders and
+ * cones of every side (front, back, both), random axes, rays from inside and outside. */
+static void t_bvh_cones(void)
+{
+    RfTestRng r = {17};
+    enum { NT = 300, NB = 100, NC = 600, RAYS = 5000 };
+    Scene s = {NT, NB, malloc(sizeof(RfTriangle) * NT), malloc(sizeof(int) * NT), malloc(sizeof(RfSphere) * NB), 0,
+               NC, malloc(sizeof(RfCone) * NC), malloc(sizeof(int) * NC)};
+    for (int i = 0; i < NT; i++) {
+        RfVec3 c = rf_vec3(rf_test_uniform(&r, -6, 6), rf_test_uniform(&r, -6, 6), rf_test_uniform(&r, -6, 6));
+        RfVec3 *p[3] = {&s.tris[i].p1, &s.tris[i].p2, &s.tris[i].p3};
+        for (int k = 0; k < 3; k++)
+            *p[k] = rf_vec3_add(c, rf_vec3(rf_test_uniform(&r, -1, 1), rf_test_uniform(&r, -1, 1), rf_test_uniform(&r, -1, 1)));
+        s.sides[i] = i % 3;
+    }
+    for (int i = 0; i < NB; i++) {
+        s.balls[i].center = rf_vec3(rf_test_uniform(&r, -6, 6), rf_test_uniform(&r, -6, 6), rf_test_uniform(&r, -6, 6));
+        s.balls[i].radius = rf_test_uniform(&r, 0.05, 0.6);
+    }
+    for (int i = 0; i < NC; i++) {
+        RfCone *c = &s.cones[i];
+        c->base = rf_vec3(rf_test_uniform(&r, -6, 6), rf_test_uniform(&r, -6, 6), rf_test_uniform(&r, -6, 6));
+        c->apex = rf_vec3_add(c->base, rf_vec3(rf_test_uniform(&r, -2, 2), rf_test_uniform(&r, -2, 2), rf_test_uniform(&r, -2, 2)));
+        c->base_radius = rf_test_uniform(&r, 0.05, 0.8);
+        c->apex_radius = i % 4 == 0 ? 0.0 : i % 4 == 1 ? c->base_radius : rf_test_uniform(&r, 0.0, 0.8);
+        s.cone_sides[i] = i % 3;
+    }
+    RfRay *rays = malloc(sizeof *rays * RAYS);
+    for (int i = 0; i < RAYS; i++) {
+        rays[i] = random_ray(&r, 7);
+        if (i % 5 == 0) /* from a cone's axis: inside it */
+            rays[i].origin = rf_vec3_scale(rf_vec3_add(s.cones[i % NC].base, s.cones[i % NC].apex), 0.5);
+    }
+    long before = rf_test_checks;
+    check_rays(&s, rays, RAYS, HUGE_VAL, "cones");
+    check_rays(&s, rays, RAYS, 3.0, "cones, t_max 3");
+    RF_CHECK(rf_test_checks - before > 2 * 2 * RAYS + 500); /* many nearest hits were cones */
+    free(rays);
+    free(s.tris);
+    free(s.sides);
+    free(s.balls);
+    free(s.cones);
+    free(s.cone_sides);
+}
+
 const RfTest rf_tests_bvh[] = {
+    {"bvh_cones_vs_brute_force", t_bvh_cones},
     {"bvh_random_vs_brute_force", t_bvh_random},
     {"bvh_shared_edges_vs_brute_force", t_bvh_shared_edges},
     {"bvh_degenerate", t_bvh_degenerate},

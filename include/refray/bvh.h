@@ -61,19 +61,22 @@ static inline RfVec3 rf_aabb_center(RfAabb a) { return rf_vec3_scale(rf_vec3_add
  * the counter-clockwise side (p2 - p1) x (p3 - p1) is the front. */
 enum { RF_BVH_SEE_BOTH = 0, RF_BVH_SEE_FRONT = 1, RF_BVH_SEE_BACK = 2 };
 
-/* What the BVH is told of an item. Triangles and spheres it intersects itself (watertight,
- * §3.5.3; the stable quadratic, §3.5.1), with the sides they show to nearest-hit queries; any
- * other item is given by its box and tested by the caller's RfBvhItemFn. */
-enum { RF_BVH_OTHER = 0, RF_BVH_TRIANGLE = 1, RF_BVH_SPHERE = 2 };
+/* What the BVH is told of an item. Triangles, spheres and cones it intersects itself
+ * (watertight, §3.5.3; the stable quadratic, §3.5.1; rf_intersect_cone_framed), with the sides
+ * they show to nearest-hit queries; any other item is given by its box and tested by the
+ * caller's RfBvhItemFn. */
+enum { RF_BVH_OTHER = 0, RF_BVH_TRIANGLE = 1, RF_BVH_SPHERE = 2, RF_BVH_CONE = 3 };
 
 typedef struct {
     int kind;        /* RF_BVH_* */
     uint64_t key;    /* >= 1, distinct: of two hits at the same t the lower key wins */
-    int sides;       /* triangles, spheres: RF_BVH_SEE_* (a sphere's front is its outside) */
-    uint32_t user;   /* triangles, spheres: 30 bits the caller gets back with a hit */
+    int sides;       /* triangles, spheres, cones: RF_BVH_SEE_* (the front is the outside) */
+    uint32_t user;   /* triangles, spheres, cones: 30 bits the caller gets back with a hit */
     RfTriangle tri;  /* RF_BVH_TRIANGLE */
     RfSphere sphere; /* RF_BVH_SPHERE */
-    RfAabb box;      /* RF_BVH_OTHER */
+    RfCone cone;     /* RF_BVH_CONE, with its frame (rf_cone_frame) */
+    RfConeFrame frame;
+    RfAabb box;      /* RF_BVH_OTHER, RF_BVH_CONE */
 } RfBvhItem;
 
 typedef struct {
@@ -89,15 +92,18 @@ typedef struct {
 
 typedef struct RfBvhNode RfBvhNode;         /* 8 children: float boxes, child references */
 typedef struct RfBvhTriBlock RfBvhTriBlock; /* 4 triangles: float and double vertices, keys */
-typedef struct RfBvhOther RfBvhOther;       /* a sphere or a caller's item */
+typedef struct RfBvhOther RfBvhOther;       /* a sphere, a cone or a caller's item */
+typedef struct { RfCone cone; RfConeFrame frame; } RfBvhCone;
 
 typedef struct {
     RfBvhNode *nodes;
     int node_count;
     RfBvhTriBlock *blocks;
     int block_count;
-    RfBvhOther *others; /* spheres and the caller's items, in leaf order */
+    RfBvhOther *others; /* spheres, cones and the caller's items, in leaf order */
     int other_count;
+    RfBvhCone *cones;   /* the cones of others, in leaf order */
+    int cone_count;
     int item_count, tri_count;
     int depth;         /* levels of 8-wide nodes, root = 1 */
     double vmax;       /* max |coordinate| of any triangle vertex (the filter's error scale) */
@@ -136,21 +142,23 @@ typedef int (*RfBvhItemFn)(void *ctx, uint64_t key, const RfBvhRay *ray, double 
                            int inclusive, double *t);
 
 /* The nearest hit so far: t and key. Start with key 0 for "none" (t is then an exclusive limit)
- * or with a hit's key (a later hit at the same t must have a lower key). When a triangle or a
- * sphere of the BVH is the nearest: tri or sphere (the other NULL), for a triangle its edge
- * functions (rf_watertight_edges: the barycentric coordinates are edges[0..2] / edges[3]) and,
- * when its side was checked, its unit normal (has_normal), for a sphere its roots and far (the
- * far root: rf_sphere_root_normal), and the user bits; both NULL for the caller's items. */
+ * or with a hit's key (a later hit at the same t must have a lower key). When a triangle, a
+ * sphere or a cone of the BVH is the nearest: tri, sphere or cone (the others NULL), for a
+ * triangle its edge functions (rf_watertight_edges: the barycentric coordinates are
+ * edges[0..2] / edges[3]) and, when its side was checked, its unit normal (has_normal), for a
+ * sphere its roots and far (the far root: rf_sphere_root_normal), for a cone its normal, and the
+ * user bits; all three NULL for the caller's items. */
 typedef struct {
     double t;
     uint64_t key;
     const RfTriangle *tri;
     const RfSphere *sphere;
+    const RfCone *cone;  /* a cone: its unit outward normal at t in normal */
     int far;
     RfSphereRoots roots; /* the sphere's, for rf_sphere_root_normal */
     double edges[4];     /* the triangle's U, V, W, det */
     int has_normal;
-    RfVec3 normal;       /* rf_triangle_unit_normal of tri, when has_normal */
+    RfVec3 normal;       /* rf_triangle_unit_normal of tri, when has_normal; a cone's normal */
     uint32_t user;
 } RfBvhHit;
 

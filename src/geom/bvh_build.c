@@ -923,10 +923,14 @@ RfStatus rf_bvh_build(RfBvh *bvh, const RfBvhDesc *desc)
     bvh->nodes = aligned(sizeof *bvh->nodes * (size_t)c.count);
     bvh->blocks = aligned(sizeof *bvh->blocks * (size_t)blocks);
     bvh->others = malloc(sizeof *bvh->others * (size_t)others + 1);
+    int cones = 0;
+    for (int i = 0; i < n; i++)
+        cones += payload[i].kind == RF_BVH_CONE;
+    bvh->cones = malloc(sizeof *bvh->cones * (size_t)cones + 1);
     leaf_node = malloc(sizeof *leaf_node * (size_t)leaves + 1);
     leaf_slot = malloc(sizeof *leaf_slot * (size_t)leaves + 1);
     leaf_start = malloc(sizeof *leaf_start * (size_t)leaves + 1);
-    if (!bvh->nodes || !bvh->blocks || !bvh->others || !leaf_node || !leaf_slot || !leaf_start)
+    if (!bvh->nodes || !bvh->blocks || !bvh->others || !bvh->cones || !leaf_node || !leaf_slot || !leaf_start)
         goto done;
     memcpy(bvh->nodes, c.nodes, sizeof *bvh->nodes * (size_t)c.count);
     bvh->node_count = c.count;
@@ -956,8 +960,15 @@ RfStatus rf_bvh_build(RfBvh *bvh, const RfBvhDesc *desc)
                     o->key = pl->key;
                     o->user = pl->user;
                     o->kind = pl->kind;
-                    if (pl->kind == RF_BVH_SPHERE)
-                        o->sphere = pl->u.sphere;
+                    if (pl->kind == RF_BVH_SPHERE) {
+                        o->u.sphere = pl->u.sphere;
+                    } else if (pl->kind == RF_BVH_CONE) { /* its cone and frame: asked again */
+                        RfBvhItem it;
+                        desc->describe(desc->ctx, -1 - b.ids[start + q], &it);
+                        o->u.cone = bvh->cone_count;
+                        bvh->cones[bvh->cone_count].cone = it.cone;
+                        bvh->cones[bvh->cone_count++].frame = it.frame;
+                    }
                 }
                 nd->ref[k] = REF_LEAF(KIND_OTHERS, oth, count);
                 oth += count;
@@ -999,12 +1010,13 @@ void rf_bvh_free(RfBvh *bvh)
     free(bvh->nodes);
     free(bvh->blocks);
     free(bvh->others);
+    free(bvh->cones);
     memset(bvh, 0, sizeof *bvh);
 }
 
 size_t rf_bvh_bytes(const RfBvh *bvh)
 {
     return sizeof *bvh->nodes * (size_t)bvh->node_count + sizeof *bvh->blocks * (size_t)bvh->block_count +
-           sizeof *bvh->others * (size_t)bvh->other_count;
+           sizeof *bvh->others * (size_t)bvh->other_count + sizeof *bvh->cones * (size_t)bvh->cone_count;
 }
 

@@ -42,12 +42,16 @@ struct RfBvhTriBlock {
     uint32_t pad2[8];
 };
 
-/* An item of an "others" leaf: a sphere (tested inline) or an item of the caller (its callback). */
+/* An item of an "others" leaf: a sphere or a cone (tested inline) or an item of the caller (its
+ * callback). */
 struct RfBvhOther {
     uint64_t key;
     uint32_t user; /* RF_BVH_SEE_* in the top 2 bits, the caller's 30 below */
-    int kind;      /* RF_BVH_SPHERE or RF_BVH_OTHER */
-    RfSphere sphere;
+    int kind;      /* RF_BVH_SPHERE, RF_BVH_CONE or RF_BVH_OTHER */
+    union {
+        RfSphere sphere;
+        int cone; /* its index in RfBvh.cones */
+    } u;
 };
 
 /* A float at least (at most) x, without branches: x rounded to nearest and moved by

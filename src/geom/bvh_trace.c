@@ -303,6 +303,7 @@ static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double 
             best->key = key;
             best->tri = &blk->tri[k];
             best->sphere = NULL;
+            best->cone = NULL;
             memcpy(best->edges, e, sizeof e);
             best->has_normal = sided;
             best->normal = nrm;
@@ -321,7 +322,7 @@ static inline int sphere_hit(const RfBvhOther *o, const RfRay *ray, double t_min
                              int mode, double *t, RfSphereRoots *roots)
 {
     RfSphereRoots r;
-    if (!rf_sphere_roots(ray, &o->sphere, &r))
+    if (!rf_sphere_roots(ray, &o->u.sphere, &r))
         return 0;
     unsigned sides = o->user >> 30;
     double lo = t_min;
@@ -330,7 +331,7 @@ static inline int sphere_hit(const RfBvhOther *o, const RfRay *ray, double t_min
         if (!(tc >= lo && (tc < lim || (tc == lim && o->key < lim_key))))
             continue;
         if (mode == NEAREST && sides != RF_BVH_SEE_BOTH) {
-            int front = rf_vec3_dot(ray->dir, rf_sphere_root_normal(&r, ray, &o->sphere, c)) < 0.0;
+            int front = rf_vec3_dot(ray->dir, rf_sphere_root_normal(&r, ray, &o->u.sphere, c)) < 0.0;
             if (front == (sides == RF_BVH_SEE_BACK)) { /* the hidden side: look beyond it */
                 lo = rf_next_up(tc);
                 continue;
@@ -339,6 +340,24 @@ static inline int sphere_hit(const RfBvhOther *o, const RfRay *ray, double t_min
         *t = tc;
         *roots = r;
         return c + 1;
+    }
+    return 0;
+}
+
+/* A cone of an "others" leaf, by the same rules: the first hit at t >= t_min below lim
+ * (inclusive: t <= lim) whose side the cone shows to a NEAREST query (a hidden side passes the
+ * ray on). Returns 1 with *h (its normal only when mode is not ANY). */
+static inline int cone_hit(const RfBvh *bvh, const RfBvhOther *o, const RfRay *ray, double t_min, double lim,
+                           int inclusive, int mode, RfHit *h)
+{
+    const RfBvhCone *c = &bvh->cones[o->u.cone];
+    unsigned sides = o->user >> 30;
+    double t_max = inclusive ? rf_next_up(lim) : lim;
+    while (rf_intersect_cone_framed(ray, &c->cone, &c->frame, t_min, t_max, mode != ANY, h)) {
+        if (mode != NEAREST || sides == RF_BVH_SEE_BOTH ||
+            (rf_vec3_dot(ray->dir, h->normal) < 0.0) != (sides == RF_BVH_SEE_BACK))
+            return 1;
+        t_min = rf_next_up(h->t); /* the hidden side: look beyond it */
     }
     return 0;
 }
@@ -362,9 +381,28 @@ static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r,
             best->t = t;
             best->key = o->key;
             best->tri = NULL;
-            best->sphere = &o->sphere;
+            best->sphere = &o->u.sphere;
+            best->cone = NULL;
             best->far = root == 2;
             best->roots = roots;
+            best->user = o->user & USER_BITS;
+            improved = 1;
+            continue;
+        }
+        if (o->kind == RF_BVH_CONE) {
+            RfHit h;
+            if (!cone_hit(bvh, o, &r->ray, t_min, best->t, mode != ANY && o->key < best->key, mode, &h))
+                continue;
+            if (mode == ANY) {
+                best->key = o->key;
+                return 1;
+            }
+            best->t = h.t;
+            best->key = o->key;
+            best->tri = NULL;
+            best->sphere = NULL;
+            best->cone = &bvh->cones[o->u.cone].cone;
+            best->normal = h.normal;
             best->user = o->user & USER_BITS;
             improved = 1;
             continue;
@@ -379,6 +417,7 @@ static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r,
         best->key = o->key;
         best->tri = NULL;
         best->sphere = NULL;
+        best->cone = NULL;
         improved = 1;
     }
     return improved;
@@ -475,6 +514,7 @@ int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,
     lim.key = 0;
     lim.tri = NULL;
     lim.sphere = NULL;
+    lim.cone = NULL;
     int hit = traverse(bvh, ray, t_min, &lim, fn, ctx, ANY);
     if (hit && key)
         *key = lim.key;

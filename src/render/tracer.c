@@ -217,6 +217,11 @@ static void describe_item(void *ctx, int j, RfBvhItem *out)
     } else if (p->type == RF_PRIM_SPHERE) {
         out->kind = RF_BVH_SPHERE;
         out->sphere = p->u.sphere;
+    } else if (p->type == RF_PRIM_CONE) { /* the frame the tracer's own test uses (cone_frames) */
+        out->kind = RF_BVH_CONE;
+        out->cone = p->u.cone;
+        out->frame = d->tracer->cone_frames[(size_t)it.prim - d->tracer->cone_first];
+        out->box = item_box(s, it);
     } else {
         out->kind = RF_BVH_OTHER;
         if (p->type == RF_PRIM_INSTANCE)
@@ -604,21 +609,22 @@ static int hit_instance(Query *q, const RfPrimitive *p, RfRay ray, double t_min,
 static int hit_item(Query *q, Item it, const RfRay *rp, const RfWatertightRay *wr, double t_min, double t_max,
                     double *t)
 {
-    const RfRay ray = rf_ray_read(rp); /* (ray.h) */
+    /* the ray is read where a kernel needs it by value (rf_ray_read, ray.h): a copy for all
+     * would be made, and waited for, on the cones' path too */
     const RfScene *s = q->tracer->scene;
     const RfPrimitive *p = &s->prims[it.prim];
     RfHit h;
     int ok = 0;
     if (p->type == RF_PRIM_INSTANCE)
-        return hit_instance(q, p, ray, t_min, t_max, t);
+        return hit_instance(q, p, rf_ray_read(rp), t_min, t_max, t);
 again:
     switch (p->type) {
     case RF_PRIM_SPHERE: {
-        ok = rf_intersect_sphere(ray, p->u.sphere, RF_SPHERE_STABLE, t_min, t_max, &h);
+        ok = rf_intersect_sphere(rf_ray_read(rp), p->u.sphere, RF_SPHERE_STABLE, t_min, t_max, &h);
         break;
     }
     case RF_PRIM_PLANE: {
-        ok = rf_intersect_plane(ray, p->u.plane, t_min, t_max, &h);
+        ok = rf_intersect_plane(rf_ray_read(rp), p->u.plane, t_min, t_max, &h);
         break;
     }
     case RF_PRIM_TRIANGLE:
@@ -646,7 +652,7 @@ again:
     if (!q->shadow && !q->both && !(p->flags & RF_PRIM_TWO_SIDED)) {
         /* one-sided: visible only from the front (outside, counter-clockwise side), or only
          * from the inside for RF_PRIM_INSIDE */
-        int front = rf_vec3_dot(ray.dir, h.normal) < 0.0;
+        int front = rf_vec3_dot(rp->dir, h.normal) < 0.0;
         if (front == !!(p->flags & RF_PRIM_INSIDE)) {
             /* the hidden side of a sphere or cone: its far root may face the ray (an inside-only
              * sphere seen from outside shows its far wall) */
@@ -701,6 +707,7 @@ static int trace_level(const Level *lv, Query *q, const RfRay *rp, double t_min,
     RfBvhHit best;
     best.tri = NULL;
     best.sphere = NULL;
+    best.cone = NULL;
     RfBvhRay br;
     if (q->tracer->opt.brute_force) {
         /* every item, in key order, with the double kernels alone: the reference for the BVH */
@@ -734,14 +741,14 @@ static int trace_level(const Level *lv, Query *q, const RfRay *rp, double t_min,
     }
     if (!found)
         return 0;
-    if (best.tri || best.sphere) { /* the winner's details: the same bits as the BVH's t */
+    if (best.tri || best.sphere || best.cone) { /* the winner's details: the same bits as the BVH's t */
         q->tri = best.tri;
         if (best.tri) { /* rf_intersect_triangle_watertight's hit from the BVH's own test */
             rf_watertight_hit(best.tri, bt, best.edges, best.has_normal ? &best.normal : NULL, &q->hit);
         } else {
             q->hit.t = bt;
             q->hit.l[0] = q->hit.l[1] = q->hit.l[2] = 0.0;
-            q->hit.normal = rf_sphere_root_normal(&best.roots, rp, best.sphere, best.far);
+            q->hit.normal = best.cone ? best.normal : rf_sphere_root_normal(&best.roots, rp, best.sphere, best.far);
         }
         q->item = key_item(bk);
         q->material = (int)(best.user & USER_MATERIAL);
