@@ -195,22 +195,31 @@ static void check_rays(Scene *s, const RfRay *rays, int n, double t_max, const c
     }
 }
 
+/* Random triangles (unit size, every side in turn) and spheres (radii in [rmin, rmax]) in the
+ * cube [-extent, extent]^3. */
+static void random_tris_balls(Scene *s, RfTestRng *r, double extent, double rmin, double rmax)
+{
+    for (int i = 0; i < s->n_tris; i++) {
+        RfVec3 c = rf_vec3(rf_test_uniform(r, -extent, extent), rf_test_uniform(r, -extent, extent),
+                           rf_test_uniform(r, -extent, extent));
+        RfVec3 *p[3] = {&s->tris[i].p1, &s->tris[i].p2, &s->tris[i].p3};
+        for (int k = 0; k < 3; k++)
+            *p[k] = rf_vec3_add(c, rf_vec3(rf_test_uniform(r, -1, 1), rf_test_uniform(r, -1, 1), rf_test_uniform(r, -1, 1)));
+        s->sides[i] = i % 3;
+    }
+    for (int i = 0; i < s->n_balls; i++) {
+        s->balls[i].center = rf_vec3(rf_test_uniform(r, -extent, extent), rf_test_uniform(r, -extent, extent),
+                                     rf_test_uniform(r, -extent, extent));
+        s->balls[i].radius = rf_test_uniform(r, rmin, rmax);
+    }
+}
+
 static void t_bvh_random(void)
 {
     RfTestRng r = {11};
     enum { NT = 3000, NB = 800, RAYS = 6000 };
     Scene s = {NT, NB, malloc(sizeof(RfTriangle) * NT), malloc(sizeof(int) * NT), malloc(sizeof(RfSphere) * NB), 0, 0, NULL, NULL};
-    for (int i = 0; i < NT; i++) {
-        RfVec3 c = rf_vec3(rf_test_uniform(&r, -10, 10), rf_test_uniform(&r, -10, 10), rf_test_uniform(&r, -10, 10));
-        RfVec3 *p[3] = {&s.tris[i].p1, &s.tris[i].p2, &s.tris[i].p3};
-        for (int k = 0; k < 3; k++)
-            *p[k] = rf_vec3_add(c, rf_vec3(rf_test_uniform(&r, -1, 1), rf_test_uniform(&r, -1, 1), rf_test_uniform(&r, -1, 1)));
-        s.sides[i] = i % 3;
-    }
-    for (int i = 0; i < NB; i++) {
-        s.balls[i].center = rf_vec3(rf_test_uniform(&r, -10, 10), rf_test_uniform(&r, -10, 10), rf_test_uniform(&r, -10, 10));
-        s.balls[i].radius = rf_test_uniform(&r, 0.01, 0.5);
-    }
+    random_tris_balls(&s, &r, 10, 0.01, 0.5);
     RfRay *rays = malloc(sizeof *rays * RAYS);
     for (int i = 0; i < RAYS; i++) {
         rays[i] = random_ray(&r, 12);
@@ -422,17 +431,7 @@ static void t_bvh_cones(void)
     enum { NT = 300, NB = 100, NC = 600, RAYS = 5000 };
     Scene s = {NT, NB, malloc(sizeof(RfTriangle) * NT), malloc(sizeof(int) * NT), malloc(sizeof(RfSphere) * NB), 0,
                NC, malloc(sizeof(RfCone) * NC), malloc(sizeof(int) * NC)};
-    for (int i = 0; i < NT; i++) {
-        RfVec3 c = rf_vec3(rf_test_uniform(&r, -6, 6), rf_test_uniform(&r, -6, 6), rf_test_uniform(&r, -6, 6));
-        RfVec3 *p[3] = {&s.tris[i].p1, &s.tris[i].p2, &s.tris[i].p3};
-        for (int k = 0; k < 3; k++)
-            *p[k] = rf_vec3_add(c, rf_vec3(rf_test_uniform(&r, -1, 1), rf_test_uniform(&r, -1, 1), rf_test_uniform(&r, -1, 1)));
-        s.sides[i] = i % 3;
-    }
-    for (int i = 0; i < NB; i++) {
-        s.balls[i].center = rf_vec3(rf_test_uniform(&r, -6, 6), rf_test_uniform(&r, -6, 6), rf_test_uniform(&r, -6, 6));
-        s.balls[i].radius = rf_test_uniform(&r, 0.05, 0.6);
-    }
+    random_tris_balls(&s, &r, 6, 0.05, 0.6);
     for (int i = 0; i < NC; i++) {
         RfCone *c = &s.cones[i];
         c->base = rf_vec3(rf_test_uniform(&r, -6, 6), rf_test_uniform(&r, -6, 6), rf_test_uniform(&r, -6, 6));
