@@ -123,16 +123,33 @@ ptrace() {
 }
 # med N CMD...: the median of N runs of a command that prints one number
 med() { n=$1; shift; i=0; while [ $i -lt "$n" ]; do "$@"; i=$((i + 1)); done | median; }
+# pair N: POV-Ray ($POV, ptrace's arguments) and refray ($RF, rtrace's) run in turn N times, so
+# that the host's drift hits both alike; prints the two medians
+pair() {
+    : > "$tmp/pp"
+    : > "$tmp/rr"
+    i=0
+    while [ $i -lt "$1" ]; do
+        ptrace $POV >> "$tmp/pp"
+        rtrace $RF >> "$tmp/rr"
+        i=$((i + 1))
+    done
+    echo "$(median < "$tmp/pp") $(median < "$tmp/rr")"
+}
+# section 4's renders take 15 ms to 2 s, where the host's noise weighs most: at least 7 pairs
+runs4=$((runs > 7 ? runs : 7))
 echo
 if command -v povray >/dev/null 2>&1; then
     echo "== 4. refray against POV-Ray 3.7, trace times (POV-Ray's statistics, refray's summary line); ratio = POV-Ray / refray"
+    echo "   medians of $runs4 runs of each, POV-Ray and refray in turn"
     printf "%-26s %8s %10s %10s %8s\n" "scene" "threads" "POV-Ray s" "refray s" "ratio"
     : > "$tmp/ratios"
     for t in 1 2; do
         for spp in 1 16; do
             if [ $spp = 1 ]; then aa="-A"; else aa="+A0.0 +AM1 +R4 +J"; fi
-            p=$(med "$runs" ptrace +Iscenes/bench/whitted.pov +W640 +H480 $aa +WT$t)
-            r=$(med "$runs" rtrace scenes/whitted.rf --threads $t --samples $spp)
+            POV="+Iscenes/bench/whitted.pov +W640 +H480 $aa +WT$t" RF="scenes/whitted.rf --threads $t --samples $spp"
+            pr=$(pair "$runs4")
+            p=${pr% *} r=${pr#* }
             ratio=$(awk -v p=$p -v r=$r 'BEGIN{print p/r}')
             printf "%-26s %8d %10.3f %10.3f %7.2fx\n" "whitted 640x480 ${spp}spp" $t "$p" "$r" "$ratio"
             [ $spp = 16 ] && echo "$ratio" >> "$tmp/ratios"
@@ -140,8 +157,9 @@ if command -v povray >/dev/null 2>&1; then
         for s in balls gears mount rings teapot tetra tree; do
             gzip -dc scenes/spd/pov/$s.pov.gz > "$tmp/$s.pov"
             f=scenes/spd/$s.nff; [ -f $f ] || f=scenes/spd/$s.nff.gz
-            p=$(med "$runs" ptrace +I"$tmp/$s.pov" +W512 +H512 -A +WT$t)
-            r=$(med "$runs" rtrace $f --threads $t --depth 5)
+            POV="+I$tmp/$s.pov +W512 +H512 -A +WT$t" RF="$f --threads $t --depth 5"
+            pr=$(pair "$runs4")
+            p=${pr% *} r=${pr#* }
             ratio=$(awk -v p=$p -v r=$r 'BEGIN{print p/r}')
             printf "%-26s %8d %10.3f %10.3f %7.2fx\n" "$s 512x512 depth 5" $t "$p" "$r" "$ratio"
             echo "$ratio" >> "$tmp/ratios"
@@ -149,7 +167,7 @@ if command -v povray >/dev/null 2>&1; then
     done
     : > "$tmp/wall"
     i=0
-    while [ $i -lt "$runs" ]; do
+    while [ $i -lt "$runs4" ]; do
         s=$(date +%s.%N)
         "$bin" render scenes/whitted.rf -o "$tmp/out.exr" --samples 16 --threads 2 --quiet
         e=$(date +%s.%N)
