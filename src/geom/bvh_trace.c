@@ -27,6 +27,11 @@ static inline float fmaxf_(float a, float b) { return b > a ? b : a; }
 void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
 {
     (void)bvh;
+    /* the ray read in 8-byte pieces (rf_ray_read): its caller has just stored it, and a wider
+     * load across two of its stores would wait for them to retire (this load was a quarter of
+     * the set-up's time) */
+    const RfRay ray = rf_ray_read(rp);
+    r->ray = ray;
     r->tri_ready = 0;
     /* Slab distances (plane - origin) * inv, rounded toward "hit" (docs/performance.md): the
      * near plane's origin moved so the difference can only shrink, the far plane's so it can
@@ -37,17 +42,9 @@ void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
      * be guesses per ray. The AVX path does the three axes in lanes, each lane the scalar
      * path's operations in its order (the same floats). */
 #if RF_BVH_AVX
-    /* the ray read in 8-byte pieces (rf_ray_read): its caller has just stored it, and a wider
-     * load across two of its stores would wait for them to retire (this load was a quarter of
-     * the set-up's time) */
-    const RfRay ray = rf_ray_read(rp);
-    r->ray = ray;
-    __m128d ox = _mm_set_sd(ray.origin.x), oy = _mm_set_sd(ray.origin.y), oz = _mm_set_sd(ray.origin.z);
-    __m128d dx = _mm_set_sd(ray.dir.x), dy = _mm_set_sd(ray.dir.y), dz = _mm_set_sd(ray.dir.z);
     const __m128 sign = _mm_set1_ps(-0.0f);
-    __m256d dd = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_unpacklo_pd(dx, dy)),
-                                      _mm_unpacklo_pd(dz, _mm_set_sd(1.0)), 1);
-    __m128 f = _mm256_cvtpd_ps(_mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_unpacklo_pd(ox, oy)), oz, 1));
+    __m256d dd = _mm256_set_pd(1.0, ray.dir.z, ray.dir.y, ray.dir.x);
+    __m128 f = _mm256_cvtpd_ps(_mm256_set_pd(0.0, ray.origin.z, ray.origin.y, ray.origin.x));
     __m128 fi = _mm256_cvtpd_ps(_mm256_div_pd(_mm256_set1_pd(1.0), dd)); /* 1/d: +-inf for +-0 */
     __m128 neg = _mm_castsi128_ps(_mm_srai_epi32(_mm_castps_si128(_mm256_cvtpd_ps(dd)), 31)); /* signbit(d) */
     __m128 w = _mm_add_ps(_mm_mul_ps(_mm_andnot_ps(sign, f), _mm_set1_ps(0x1p-23f)), _mm_set1_ps(0x1p-126f));
@@ -63,8 +60,6 @@ void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
     r->near_hi[1] = (m >> 1) & 1;
     r->near_hi[2] = (m >> 2) & 1;
 #else
-    const RfRay ray = rf_ray_read(rp);
-    r->ray = ray;
     const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
     const double d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
     for (int a = 0; a < 3; a++) {
