@@ -363,46 +363,21 @@ static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r,
     int improved = 0;
     const RfBvhOther *o = &bvh->others[REF_FIRST(ref)], *end = o + REF_COUNT(ref);
     for (; o < end; o++) {
+        /* the item's test by its kind, then one rule for a hit: any (ANY) or the new nearest */
         double t;
+        RfSphereRoots roots;
+        RfHit h;
+        int root = 0, hit;
         if (o->kind == RF_BVH_SPHERE) {
-            RfSphereRoots roots;
-            int root = sphere_hit(o, &r->ray, t_min, best->t, mode == ANY ? 0 : best->key, mode, &t, &roots);
-            if (!root)
-                continue;
-            if (mode == ANY) {
-                best->key = o->key;
-                return 1;
-            }
-            best->t = t;
-            best->key = o->key;
-            best->tri = NULL;
-            best->sphere = &o->u.sphere;
-            best->cone = NULL;
-            best->far = root == 2;
-            best->roots = roots;
-            best->user = o->user & USER_BITS;
-            improved = 1;
-            continue;
+            root = sphere_hit(o, &r->ray, t_min, best->t, mode == ANY ? 0 : best->key, mode, &t, &roots);
+            hit = root != 0;
+        } else if (o->kind == RF_BVH_CONE) {
+            if ((hit = cone_hit(bvh, o, &r->ray, t_min, best->t, mode != ANY && o->key < best->key, mode, &h)))
+                t = h.t;
+        } else {
+            hit = fn(ctx, o->key, r, t_min, best->t, mode != ANY && o->key < best->key, &t);
         }
-        if (o->kind == RF_BVH_CONE) {
-            RfHit h;
-            if (!cone_hit(bvh, o, &r->ray, t_min, best->t, mode != ANY && o->key < best->key, mode, &h))
-                continue;
-            if (mode == ANY) {
-                best->key = o->key;
-                return 1;
-            }
-            best->t = h.t;
-            best->key = o->key;
-            best->tri = NULL;
-            best->sphere = NULL;
-            best->cone = &bvh->cones[o->u.cone].cone;
-            best->normal = h.normal;
-            best->user = o->user & USER_BITS;
-            improved = 1;
-            continue;
-        }
-        if (!fn(ctx, o->key, r, t_min, best->t, mode != ANY && o->key < best->key, &t))
+        if (!hit)
             continue;
         if (mode == ANY) {
             best->key = o->key;
@@ -411,8 +386,16 @@ static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r,
         best->t = t;
         best->key = o->key;
         best->tri = NULL;
-        best->sphere = NULL;
-        best->cone = NULL;
+        best->sphere = o->kind == RF_BVH_SPHERE ? &o->u.sphere : NULL;
+        best->cone = o->kind == RF_BVH_CONE ? &bvh->cones[o->u.cone].cone : NULL;
+        if (o->kind == RF_BVH_SPHERE) {
+            best->far = root == 2;
+            best->roots = roots;
+        } else if (o->kind == RF_BVH_CONE) {
+            best->normal = h.normal;
+        }
+        if (o->kind != RF_BVH_OTHER) /* the caller's items keep their details themselves */
+            best->user = o->user & USER_BITS;
         improved = 1;
     }
     return improved;
