@@ -155,7 +155,7 @@ if command -v povray >/dev/null 2>&1; then
     echo "== 4. refray against POV-Ray 3.7, trace times (POV-Ray's statistics, refray's summary line); ratio = POV-Ray / refray"
     echo "   medians of $runs4 runs of each; POV-Ray, POV-Ray without cut-off and refray in turn. POV-Ray stops a ray"
     echo "   whose weight falls below adc_bailout (1/255 by default); refray traces the whole tree to the depth (these"
-    echo "   scenes' threshold is 0). \"no cut-off\": POV-Ray with adc_bailout 0, the same tree of rays as refray's"
+    echo "   scenes' threshold is 0). \"no cut-off\": POV-Ray with adc_bailout 0, no ray left out for its weight"
     printf "%-26s %8s %10s %10s %8s %10s %8s\n" "scene" "threads" "POV-Ray s" "refray s" "ratio" "no cut-off" "ratio"
     : > "$tmp/ratios"
     echo 'global_settings { adc_bailout 0 }' > "$tmp/adc0.inc"
