@@ -503,15 +503,17 @@ int rf_intersect_cone_framed(const RfRay *rp, const RfCone *cp, const RfConeFram
     double r0 = cone.base_radius + m * oz; /* radius at the origin's axial position */
     double a = rf_vec3_dot(dp, dp) - m * m * dz * dz;
     double bh = rf_vec3_dot(op, dp) - m * dz * r0;
-    double c = dot_minus_square(op, r0); /* |op|^2 - r0^2 without cancellation, as the sphere's */
     /* The quarter discriminant without the cancellation of bh^2 - a c (which loses |op|^2 u of
      * it for a ray far from the cone): by Lagrange's identity (op.dp)^2 - |op|^2 |dp|^2 =
      * -|op x dp|^2, so bh^2 - a c = |r0 dp - m dz op|^2 - |op x dp|^2, taken as a product of a
      * difference and a sum as the sphere's (r - |v|)(r + |v|) */
     double lw = rf_vec3_length(rf_vec3_sub(rf_vec3_scale(dp, r0), rf_vec3_scale(op, m * dz)));
     double lx = rf_vec3_length(rf_vec3_cross(op, dp));
-    double t[2], sq;
-    if (!solve_quadratic(a, bh, c, (lw - lx) * (lw + lx), t, &sq))
+    double dq = (lw - lx) * (lw + lx), t[2], sq;
+    if (!(dq >= 0.0)) /* a miss: the compensated c below is not needed (solve_quadratic's test) */
+        return 0;
+    double c = dot_minus_square(op, r0); /* |op|^2 - r0^2 without cancellation, as the sphere's */
+    if (!solve_quadratic(a, bh, c, dq, t, &sq))
         return 0;
     for (int i = 0; i < 2; i++) {
         if (!in_range(t[i], t_min, t_max))
