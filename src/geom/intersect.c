@@ -68,6 +68,18 @@ static double dot_minus_square(RfVec3 f, double r)
     return s + e;
 }
 
+/* The roots of a t^2 + 2 bh t + c = 0 with c = <f,f> - r^2 compensated (dot_minus_square) and
+ * dq the caller's cancellation-free quarter discriminant. c is computed only when dq shows real
+ * roots (solve_quadratic reads it for nothing else): most sphere and cone tests are misses. */
+static inline int solve_compensated(double a, double bh, RfVec3 f, double r, double dq, double *c, double t[2],
+                                    double *root_dq)
+{
+    if (!(dq >= 0.0))
+        return 0;
+    *c = dot_minus_square(f, r);
+    return solve_quadratic(a, bh, *c, dq, t, root_dq);
+}
+
 /* The stable form's pieces: f = e - center, a = <d,d>, bh = <d,f>, v = f - (bh/a) d (the
  * centre's offset from the ray's closest point, v perpendicular to d) and the quarter
  * discriminant D/4 = a (r - |v|)(r + |v|), which does not cancel the way b^2 - 4ac does for a
@@ -86,15 +98,12 @@ static SphereParts sphere_parts(RfRay ray, RfSphere s)
     return p;
 }
 
-/* The stable method's roots t[0] <= t[1] from its parts (computed here into *p). The
- * compensated c is computed only when there are real roots: most sphere tests are misses. */
+/* The stable method's roots t[0] <= t[1] from its parts (computed here into *p); *c is set only
+ * when p->dq >= 0. */
 static inline int sphere_stable(RfRay ray, RfSphere s, SphereParts *p, double *c, double t[2], double *root_dq)
 {
     *p = sphere_parts(ray, s);
-    if (!(p->dq >= 0.0))
-        return 0;
-    *c = dot_minus_square(p->f, s.radius);
-    return solve_quadratic(p->a, p->bh, *c, p->dq, t, root_dq);
+    return solve_compensated(p->a, p->bh, p->f, s.radius, p->dq, c, t, root_dq);
 }
 
 /* §3.5.1 */
@@ -509,11 +518,8 @@ int rf_intersect_cone_framed(const RfRay *rp, const RfCone *cp, const RfConeFram
      * difference and a sum as the sphere's (r - |v|)(r + |v|) */
     double lw = rf_vec3_length(rf_vec3_sub(rf_vec3_scale(dp, r0), rf_vec3_scale(op, m * dz)));
     double lx = rf_vec3_length(rf_vec3_cross(op, dp));
-    double dq = (lw - lx) * (lw + lx), t[2], sq;
-    if (!(dq >= 0.0)) /* a miss: the compensated c below is not needed (solve_quadratic's test) */
-        return 0;
-    double c = dot_minus_square(op, r0); /* |op|^2 - r0^2 without cancellation, as the sphere's */
-    if (!solve_quadratic(a, bh, c, dq, t, &sq))
+    double t[2], c, sq; /* c = |op|^2 - r0^2, compensated as the sphere's */
+    if (!solve_compensated(a, bh, op, r0, (lw - lx) * (lw + lx), &c, t, &sq))
         return 0;
     for (int i = 0; i < 2; i++) {
         if (!in_range(t[i], t_min, t_max))
