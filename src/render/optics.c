@@ -12,12 +12,12 @@ static int transmitted_cos(double sin2_t, double *cos_t)
 {
     if (!(sin2_t <= 1.0 + RF_TIR_SLACK))
         return 1;
-    *cos_t = sqrt(fmax(0.0, 1.0 - sin2_t));
+    *cos_t = sqrt(rf_max_num(0.0, 1.0 - sin2_t)); /* glibc fmax's result, inline (vec.h) */
     return 0;
 }
 
 /* sin^2 theta from cos theta as (1 - c)(1 + c): exact-ish near c = 1, unlike 1 - c^2 */
-static double sin2_from_cos(double c) { return fmax(0.0, (1.0 - c) * (1.0 + c)); }
+static double sin2_from_cos(double c) { return rf_max_num(0.0, (1.0 - c) * (1.0 + c)); }
 
 RfSnell rf_snell(double eta_i, double eta_t, double theta_i)
 {
