@@ -434,12 +434,15 @@ static inline int traverse(const RfBvh *bvh, RfBvhRay *r, double t_min, RfBvhHit
                     continue;
                 }
                 /* several: onto the stack, sorted there so that the nearest is on top (an
-                 * empty slot, entered only through NaN, is a leaf of nothing) */
+                 * empty slot, entered only through NaN, is a leaf of nothing). An occlusion
+                 * query takes them unsorted: any hit ends it wherever it lies, and most shadow
+                 * rays find none and visit every entered child anyway (rings -3 % instructions,
+                 * mount +0.3 %, docs/performance.md) */
                 int base = top;
                 for (;;) {
                     Entry e = {tn[k], n->ref[k]};
                     int q = top++;
-                    for (; q > base && stack[q - 1].t < e.t; q--)
+                    for (; mode != ANY && q > base && stack[q - 1].t < e.t; q--)
                         stack[q] = stack[q - 1];
                     stack[q] = e;
                     if (!mask)
