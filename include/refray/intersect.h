@@ -50,6 +50,12 @@ int rf_intersect_sphere(RfRay ray, RfSphere s, RfSphereMethod method, double t_m
  * rf_intersect_sphere is these two routines, and the tracer's own loops use them directly. */
 typedef struct { double t[2]; RfVec3 v; double sq, a; } RfSphereRoots; /* sq = sqrt(D/4), a = <d,d> */
 int rf_sphere_roots(const RfRay *ray, const RfSphere *s, RfSphereRoots *out);
+/* The smallest root of t[0] <= t[1] in [t_min, t_max): 0 (none), 1 (near) or 2 (far); NaN is
+ * in no range. rf_intersect_sphere's choice, for callers that need the root alone. */
+static inline int rf_sphere_pick_root(const double t[2], double t_min, double t_max)
+{
+    return t[0] >= t_min && t[0] < t_max ? 1 : t[1] >= t_min && t[1] < t_max ? 2 : 0;
+}
 /* The outward unit normal at root t[far]. */
 static inline RfVec3 rf_sphere_root_normal(const RfSphereRoots *r, const RfRay *ray, const RfSphere *s, int far)
 {

@@ -156,12 +156,6 @@ int rf_sphere_roots(const RfRay *ray, const RfSphere *s, RfSphereRoots *out)
     return 1;
 }
 
-/* The smallest root in [t_min, t_max) of t[0] <= t[1]: 0 (none), 1 (near) or 2 (far). */
-static inline int pick_root(const double t[2], double t_min, double t_max)
-{
-    return in_range(t[0], t_min, t_max) ? 1 : in_range(t[1], t_min, t_max) ? 2 : 0;
-}
-
 int rf_intersect_sphere(RfRay ray, RfSphere s, RfSphereMethod method, double t_min, double t_max,
                         RfHit *hit)
 {
@@ -172,7 +166,7 @@ int rf_intersect_sphere(RfRay ray, RfSphere s, RfSphereMethod method, double t_m
         RfSphereQuadratic q = rf_sphere_quadratic(ray, s, method);
         t[0] = q.t1;
         t[1] = q.t2;
-        if (q.roots == 0 || !(root = pick_root(t, t_min, t_max)))
+        if (q.roots == 0 || !(root = rf_sphere_pick_root(t, t_min, t_max)))
             return 0;
         hit->t = t[root - 1];
         hit->normal = rf_vec3_scale(rf_vec3_sub(rf_ray_at(ray, hit->t), s.center), 1.0 / s.radius);
@@ -181,7 +175,7 @@ int rf_intersect_sphere(RfRay ray, RfSphere s, RfSphereMethod method, double t_m
     /* t1 is the near side (origin outside); t2 when t1 is behind or before t_min (origin
      * inside: the far side) */
     RfSphereRoots r;
-    if (!rf_sphere_roots(&ray, &s, &r) || !(root = pick_root(r.t, t_min, t_max)))
+    if (!rf_sphere_roots(&ray, &s, &r) || !(root = rf_sphere_pick_root(r.t, t_min, t_max)))
         return 0;
     hit->t = r.t[root - 1];
     hit->normal = rf_sphere_root_normal(&r, &ray, &s, root == 2);

@@ -620,6 +620,13 @@ static int hit_item(Query *q, Item it, const RfRay *rp, const RfWatertightRay *w
 again:
     switch (p->type) {
     case RF_PRIM_SPHERE: {
+        if (q->shadow) { /* rf_intersect_sphere's root, without the normal a shadow query never reads */
+            RfSphereRoots r;
+            int root = rf_sphere_roots(rp, &p->u.sphere, &r) ? rf_sphere_pick_root(r.t, t_min, t_max) : 0;
+            if (root)
+                *t = r.t[root - 1];
+            return root != 0;
+        }
         ok = rf_intersect_sphere(rf_ray_read(rp), p->u.sphere, RF_SPHERE_STABLE, t_min, t_max, &h);
         break;
     }
