@@ -55,17 +55,20 @@ void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
     __m128 clamp = _mm_or_ps(_mm_set1_ps(0x1p127f), _mm_and_ps(neg, sign));
     _mm_storeu_ps(r->inv[0], _mm_blendv_ps(clamp, near, _mm_cmple_ps(_mm_andnot_ps(sign, near), _mm_set1_ps(0x1p127f))));
     _mm_storeu_ps(r->inv[1], far);
-    int m = _mm_movemask_ps(neg);
-    r->near_hi[0] = m & 1;
-    r->near_hi[1] = (m >> 1) & 1;
-    r->near_hi[2] = (m >> 2) & 1;
+    /* the node test's rows by the three sign bits, from a table (no arithmetic per axis) */
+    static const int rows[8][6] = {{0, 2, 4, 1, 3, 5}, {1, 2, 4, 0, 3, 5}, {0, 3, 4, 1, 2, 5}, {1, 3, 4, 0, 2, 5},
+                                   {0, 2, 5, 1, 3, 4}, {1, 2, 5, 0, 3, 4}, {0, 3, 5, 1, 2, 4}, {1, 3, 5, 0, 2, 4}};
+    const int *rw = rows[_mm_movemask_ps(neg) & 7];
+    memcpy(r->lo, rw, sizeof r->lo);
+    memcpy(r->hi, rw + 3, sizeof r->hi);
 #else
     const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
     const double d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
     for (int a = 0; a < 3; a++) {
         int neg = signbit(d[a]) != 0; /* the sign of 1/d, without waiting for the division */
         float up = rf__widen_up(o[a]), down = rf__widen_down(o[a]);
-        r->near_hi[a] = neg;
+        r->lo[a] = 2 * a + neg;
+        r->hi[a] = 2 * a + 1 - neg;
         r->org[0][a] = neg ? down : up;
         r->org[1][a] = neg ? up : down;
         float fi = (float)(1.0 / d[a]);
@@ -116,8 +119,8 @@ static inline unsigned node_test_scalar(const RfBvhNode *n, const RfBvhRay *r, f
     for (int k = 0; k < WIDTH; k++) {
         float t0 = tmin, t1 = tmax;
         for (int a = 0; a < 3; a++) {
-            float e = (n->b[2 * a + r->near_hi[a]][k] - r->org[0][a]) * r->inv[0][a];
-            float x = (n->b[2 * a + 1 - r->near_hi[a]][k] - r->org[1][a]) * r->inv[1][a];
+            float e = (n->b[r->lo[a]][k] - r->org[0][a]) * r->inv[0][a];
+            float x = (n->b[r->hi[a]][k] - r->org[1][a]) * r->inv[1][a];
             t0 = e > t0 ? e : t0;
             t1 = x < t1 ? x : t1;
         }
@@ -131,7 +134,7 @@ static inline unsigned node_test_scalar(const RfBvhNode *n, const RfBvhRay *r, f
 /* The ray's slab constants broadcast once per query (they stay in registers). */
 typedef struct {
     __m256 org[2][3], inv[2][3];
-    int lo[3], hi[3]; /* rows of RfBvhNode.b for the near and the far plane of each axis */
+    size_t lo[3], hi[3]; /* byte offsets in RfBvhNode.b of the near and the far plane of each axis */
 } NodeRay;
 
 static inline void node_axis(const RfBvhRay *r, NodeRay *nr, int a)
@@ -140,8 +143,8 @@ static inline void node_axis(const RfBvhRay *r, NodeRay *nr, int a)
         nr->org[s][a] = _mm256_set1_ps(r->org[s][a]);
         nr->inv[s][a] = _mm256_set1_ps(r->inv[s][a]);
     }
-    nr->lo[a] = 2 * a + r->near_hi[a];
-    nr->hi[a] = 2 * a + 1 - r->near_hi[a];
+    nr->lo[a] = (size_t)r->lo[a] * sizeof(((const RfBvhNode *)0)->b[0]);
+    nr->hi[a] = (size_t)r->hi[a] * sizeof(((const RfBvhNode *)0)->b[0]);
 }
 
 static inline void node_ray(const RfBvhRay *r, NodeRay *nr)
@@ -151,15 +154,20 @@ static inline void node_ray(const RfBvhRay *r, NodeRay *nr)
     node_axis(r, nr, 2);
 }
 
+static inline __m256 row(const RfBvhNode *n, size_t off)
+{
+    return _mm256_load_ps((const float *)(const void *)((const char *)n->b + off));
+}
+
 static inline unsigned node_test_avx(const RfBvhNode *n, const NodeRay *nr, __m256 tmin, __m256 tmax, float *tn)
 {
     /* e > t0 ? e : t0 with e first: a NaN e (0 * inf) drops out */
-    __m256 e0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n->b[nr->lo[0]]), nr->org[0][0]), nr->inv[0][0]);
-    __m256 x0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n->b[nr->hi[0]]), nr->org[1][0]), nr->inv[1][0]);
-    __m256 e1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n->b[nr->lo[1]]), nr->org[0][1]), nr->inv[0][1]);
-    __m256 x1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n->b[nr->hi[1]]), nr->org[1][1]), nr->inv[1][1]);
-    __m256 e2 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n->b[nr->lo[2]]), nr->org[0][2]), nr->inv[0][2]);
-    __m256 x2 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n->b[nr->hi[2]]), nr->org[1][2]), nr->inv[1][2]);
+    __m256 e0 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->lo[0]), nr->org[0][0]), nr->inv[0][0]);
+    __m256 x0 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->hi[0]), nr->org[1][0]), nr->inv[1][0]);
+    __m256 e1 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->lo[1]), nr->org[0][1]), nr->inv[0][1]);
+    __m256 x1 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->hi[1]), nr->org[1][1]), nr->inv[1][1]);
+    __m256 e2 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->lo[2]), nr->org[0][2]), nr->inv[0][2]);
+    __m256 x2 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->hi[2]), nr->org[1][2]), nr->inv[1][2]);
     __m256 t0 = _mm256_max_ps(e2, _mm256_max_ps(e1, _mm256_max_ps(e0, tmin)));
     __m256 t1 = _mm256_min_ps(x2, _mm256_min_ps(x1, _mm256_min_ps(x0, tmax)));
     _mm256_storeu_ps(tn, t0);
