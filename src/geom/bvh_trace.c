@@ -24,6 +24,17 @@ static inline float fmaxf_(float a, float b) { return b > a ? b : a; }
 /* float unit roundoff */
 #define U32 0x1p-24
 
+/* The node test's rows (RfBvhRay.lo, .hi) by the direction's sign bits (bit a: dir[a] < 0, the
+ * near plane is then the box's hi side): axis a's near plane is row 2a or 2a + 1, its far plane
+ * the other. A table, not arithmetic per axis. */
+static void set_rows(RfBvhRay *r, int signs)
+{
+    static const int rows[8][6] = {{0, 2, 4, 1, 3, 5}, {1, 2, 4, 0, 3, 5}, {0, 3, 4, 1, 2, 5}, {1, 3, 4, 0, 2, 5},
+                                   {0, 2, 5, 1, 3, 4}, {1, 2, 5, 0, 3, 4}, {0, 3, 5, 1, 2, 4}, {1, 3, 5, 0, 2, 4}};
+    memcpy(r->lo, rows[signs], sizeof r->lo);
+    memcpy(r->hi, rows[signs] + 3, sizeof r->hi);
+}
+
 void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
 {
     (void)bvh;
@@ -55,20 +66,15 @@ void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
     __m128 clamp = _mm_or_ps(_mm_set1_ps(0x1p127f), _mm_and_ps(neg, sign));
     _mm_storeu_ps(r->inv[0], _mm_blendv_ps(clamp, near, _mm_cmple_ps(_mm_andnot_ps(sign, near), _mm_set1_ps(0x1p127f))));
     _mm_storeu_ps(r->inv[1], far);
-    /* the node test's rows by the three sign bits, from a table (no arithmetic per axis) */
-    static const int rows[8][6] = {{0, 2, 4, 1, 3, 5}, {1, 2, 4, 0, 3, 5}, {0, 3, 4, 1, 2, 5}, {1, 3, 4, 0, 2, 5},
-                                   {0, 2, 5, 1, 3, 4}, {1, 2, 5, 0, 3, 4}, {0, 3, 5, 1, 2, 4}, {1, 3, 5, 0, 2, 4}};
-    const int *rw = rows[_mm_movemask_ps(neg) & 7];
-    memcpy(r->lo, rw, sizeof r->lo);
-    memcpy(r->hi, rw + 3, sizeof r->hi);
+    set_rows(r, _mm_movemask_ps(neg) & 7);
 #else
     const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
     const double d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
+    int signs = 0;
     for (int a = 0; a < 3; a++) {
         int neg = signbit(d[a]) != 0; /* the sign of 1/d, without waiting for the division */
         float up = rf__widen_up(o[a]), down = rf__widen_down(o[a]);
-        r->lo[a] = 2 * a + neg;
-        r->hi[a] = 2 * a + 1 - neg;
+        signs |= neg << a;
         r->org[0][a] = neg ? down : up;
         r->org[1][a] = neg ? up : down;
         float fi = (float)(1.0 / d[a]);
@@ -76,6 +82,7 @@ void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
         r->inv[0][a] = fabsf(near) <= 0x1p127f ? near : neg ? -0x1p127f : 0x1p127f;
         r->inv[1][a] = far;
     }
+    set_rows(r, signs);
 #endif
 }
 
