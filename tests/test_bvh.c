@@ -304,7 +304,8 @@ static void t_bvh_ray_constants(void)
             float fi = (float)(1.0 / d[a]), near = fi * (1.0f - 0x1p-21f), far = fi * (1.0f + 0x1p-21f);
             float inv0 = fabsf(near) <= 0x1p127f ? near : neg ? -0x1p127f : 0x1p127f;
             float org0 = neg ? down : up, org1 = neg ? up : down; /* bit for bit: NaN too (inf - inf) */
-            int ok = r.lo[a] == 2 * a + neg && r.hi[a] == 2 * a + 1 - neg && memcmp(&r.org[0][a], &org0, sizeof org0) == 0 &&
+            size_t rb = 8 * sizeof(float); /* a row: the 8 children's planes */
+            int ok = r.rows[a] == (size_t)(2 * a + neg) * rb && r.rows[3 + a] == (size_t)(2 * a + 1 - neg) * rb && memcmp(&r.org[0][a], &org0, sizeof org0) == 0 &&
                      memcmp(&r.org[1][a], &org1, sizeof org1) == 0 && memcmp(&r.inv[0][a], &inv0, sizeof inv0) == 0 &&
                      memcmp(&r.inv[1][a], &far, sizeof far) == 0;
             if (!ok)

@@ -126,8 +126,9 @@ typedef struct {
     RfWatertightRay wr;
     float org[2][4];   /* [0]: origin rounded for the near planes, [1]: for the far planes (x, y, z, -) */
     float inv[2][4];   /* 1/dir shrunk ([0], near) and grown ([1], far) by a few ulps (x, y, z, -) */
-    int lo[3], hi[3];  /* rows of the node's boxes for axis a's near and far plane: 2a, 2a + 1,
-                          swapped where dir < 0 (the near plane is then the box's hi side) */
+    const size_t *rows; /* byte offsets in RfBvhNode.b (rows of 8 floats) of axis a's near plane (rows[a]) and far
+                          plane (rows[3 + a]): rows 2a and 2a + 1, swapped where dir < 0 (the near
+                          plane is then the box's hi side); a static table's, not the ray's */
     float fo[3];       /* filter: the origin in float (nearest), permuted to kx, ky, kz */
     float fsx, fsy;    /* filter: the shear in float */
     float k1, k2, k3;  /* filter bound B = m (k1 + k2 m) + k3, m = max |ray-space coordinate| */

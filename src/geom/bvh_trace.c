@@ -24,16 +24,17 @@ static inline float fmaxf_(float a, float b) { return b > a ? b : a; }
 /* float unit roundoff */
 #define U32 0x1p-24
 
-/* The node test's rows (RfBvhRay.lo, .hi) by the direction's sign bits (bit a: dir[a] < 0, the
+/* The node test's rows (RfBvhRay.rows) by the direction's sign bits (bit a: dir[a] < 0, the
  * near plane is then the box's hi side): axis a's near plane is row 2a or 2a + 1, its far plane
- * the other. A table, not arithmetic per axis. */
-static void set_rows(RfBvhRay *r, int signs)
-{
-    static const int rows[8][6] = {{0, 2, 4, 1, 3, 5}, {1, 2, 4, 0, 3, 5}, {0, 3, 4, 1, 2, 5}, {1, 3, 4, 0, 2, 5},
-                                   {0, 2, 5, 1, 3, 4}, {1, 2, 5, 0, 3, 4}, {0, 3, 5, 1, 2, 4}, {1, 3, 5, 0, 2, 4}};
-    memcpy(r->lo, rows[signs], sizeof r->lo);
-    memcpy(r->hi, rows[signs] + 3, sizeof r->hi);
-}
+ * the other, as byte offsets in RfBvhNode.b. A table the ray points into: no arithmetic and no
+ * copy per query. */
+#define ROW(i) ((i) * sizeof(((const RfBvhNode *)0)->b[0]))
+static const size_t row_table[8][6] = {
+    {ROW(0), ROW(2), ROW(4), ROW(1), ROW(3), ROW(5)}, {ROW(1), ROW(2), ROW(4), ROW(0), ROW(3), ROW(5)},
+    {ROW(0), ROW(3), ROW(4), ROW(1), ROW(2), ROW(5)}, {ROW(1), ROW(3), ROW(4), ROW(0), ROW(2), ROW(5)},
+    {ROW(0), ROW(2), ROW(5), ROW(1), ROW(3), ROW(4)}, {ROW(1), ROW(2), ROW(5), ROW(0), ROW(3), ROW(4)},
+    {ROW(0), ROW(3), ROW(5), ROW(1), ROW(2), ROW(4)}, {ROW(1), ROW(3), ROW(5), ROW(0), ROW(2), ROW(4)}};
+#undef ROW
 
 void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
 {
@@ -66,7 +67,7 @@ void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
     __m128 clamp = _mm_or_ps(_mm_set1_ps(0x1p127f), _mm_and_ps(neg, sign));
     _mm_storeu_ps(r->inv[0], _mm_blendv_ps(clamp, near, _mm_cmple_ps(_mm_andnot_ps(sign, near), _mm_set1_ps(0x1p127f))));
     _mm_storeu_ps(r->inv[1], far);
-    set_rows(r, _mm_movemask_ps(neg) & 7);
+    r->rows = row_table[_mm_movemask_ps(neg) & 7];
 #else
     const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
     const double d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
@@ -82,7 +83,7 @@ void rf_bvh_ray_init(const RfBvh *bvh, const RfRay *rp, RfBvhRay *r)
         r->inv[0][a] = fabsf(near) <= 0x1p127f ? near : neg ? -0x1p127f : 0x1p127f;
         r->inv[1][a] = far;
     }
-    set_rows(r, signs);
+    r->rows = row_table[signs];
 #endif
 }
 
@@ -120,14 +121,20 @@ static void tri_setup(const RfBvh *bvh, RfBvhRay *r)
 /* The children a ray enters within [tmin, tmax]: bit k of the result; tn[k] their entry
  * distances. NaN (0 * inf: a parallel ray with its origin on a slab plane) is the first
  * operand of max/min and drops out, which keeps the box (conservative). */
+/* Row `off` (a byte offset, RfBvhRay.rows) of a node's boxes. */
+static inline const float *row_scalar(const RfBvhNode *n, size_t off)
+{
+    return (const float *)(const void *)((const char *)n->b + off);
+}
+
 static inline unsigned node_test_scalar(const RfBvhNode *n, const RfBvhRay *r, float tmin, float tmax, float *tn)
 {
     unsigned mask = 0;
     for (int k = 0; k < WIDTH; k++) {
         float t0 = tmin, t1 = tmax;
         for (int a = 0; a < 3; a++) {
-            float e = (n->b[r->lo[a]][k] - r->org[0][a]) * r->inv[0][a];
-            float x = (n->b[r->hi[a]][k] - r->org[1][a]) * r->inv[1][a];
+            float e = (row_scalar(n, r->rows[a])[k] - r->org[0][a]) * r->inv[0][a];
+            float x = (row_scalar(n, r->rows[3 + a])[k] - r->org[1][a]) * r->inv[1][a];
             t0 = e > t0 ? e : t0;
             t1 = x < t1 ? x : t1;
         }
@@ -141,7 +148,7 @@ static inline unsigned node_test_scalar(const RfBvhNode *n, const RfBvhRay *r, f
 /* The ray's slab constants broadcast once per query (they stay in registers). */
 typedef struct {
     __m256 org[2][3], inv[2][3];
-    size_t lo[3], hi[3]; /* byte offsets in RfBvhNode.b of the near and the far plane of each axis */
+    const size_t *rows; /* RfBvhRay.rows */
 } NodeRay;
 
 static inline void node_axis(const RfBvhRay *r, NodeRay *nr, int a)
@@ -150,12 +157,11 @@ static inline void node_axis(const RfBvhRay *r, NodeRay *nr, int a)
         nr->org[s][a] = _mm256_set1_ps(r->org[s][a]);
         nr->inv[s][a] = _mm256_set1_ps(r->inv[s][a]);
     }
-    nr->lo[a] = (size_t)r->lo[a] * sizeof(((const RfBvhNode *)0)->b[0]);
-    nr->hi[a] = (size_t)r->hi[a] * sizeof(((const RfBvhNode *)0)->b[0]);
 }
 
 static inline void node_ray(const RfBvhRay *r, NodeRay *nr)
 {
+    nr->rows = r->rows;
     node_axis(r, nr, 0); /* written out: the compiler did not unroll the loop over the axes */
     node_axis(r, nr, 1);
     node_axis(r, nr, 2);
@@ -163,18 +169,18 @@ static inline void node_ray(const RfBvhRay *r, NodeRay *nr)
 
 static inline __m256 row(const RfBvhNode *n, size_t off)
 {
-    return _mm256_load_ps((const float *)(const void *)((const char *)n->b + off));
+    return _mm256_load_ps(row_scalar(n, off));
 }
 
 static inline unsigned node_test_avx(const RfBvhNode *n, const NodeRay *nr, __m256 tmin, __m256 tmax, float *tn)
 {
     /* e > t0 ? e : t0 with e first: a NaN e (0 * inf) drops out */
-    __m256 e0 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->lo[0]), nr->org[0][0]), nr->inv[0][0]);
-    __m256 x0 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->hi[0]), nr->org[1][0]), nr->inv[1][0]);
-    __m256 e1 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->lo[1]), nr->org[0][1]), nr->inv[0][1]);
-    __m256 x1 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->hi[1]), nr->org[1][1]), nr->inv[1][1]);
-    __m256 e2 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->lo[2]), nr->org[0][2]), nr->inv[0][2]);
-    __m256 x2 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->hi[2]), nr->org[1][2]), nr->inv[1][2]);
+    __m256 e0 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->rows[0]), nr->org[0][0]), nr->inv[0][0]);
+    __m256 x0 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->rows[3]), nr->org[1][0]), nr->inv[1][0]);
+    __m256 e1 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->rows[1]), nr->org[0][1]), nr->inv[0][1]);
+    __m256 x1 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->rows[4]), nr->org[1][1]), nr->inv[1][1]);
+    __m256 e2 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->rows[2]), nr->org[0][2]), nr->inv[0][2]);
+    __m256 x2 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->rows[5]), nr->org[1][2]), nr->inv[1][2]);
     __m256 t0 = _mm256_max_ps(e2, _mm256_max_ps(e1, _mm256_max_ps(e0, tmin)));
     __m256 t1 = _mm256_min_ps(x2, _mm256_min_ps(x1, _mm256_min_ps(x0, tmax)));
     _mm256_storeu_ps(tn, t0);
