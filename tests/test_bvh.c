@@ -459,8 +459,86 @@ static void t_bvh_cones(void)
     free(s.cone_sides);
 }
 
+/* rf_bvh_cone_empty against brute force: square pyramids of random apex, axis and width among
+ * sparse triangles and spheres; where it answers "empty", rays spread over the pyramid (its
+ * edges and corners too) hit nothing, by brute force and by the BVH. Both answers must occur,
+ * and the degenerate inputs answer "maybe" (0) or, for an empty BVH, "empty". */
+static void t_bvh_cone_empty(void)
+{
+    RfTestRng r = {17};
+    enum { NT = 300, NB = 60, CONES = 400, RAYS = 64 };
+    Scene s = {NT, NB, malloc(sizeof(RfTriangle) * NT), malloc(sizeof(int) * NT), malloc(sizeof(RfSphere) * NB), 0, 0, NULL, NULL};
+    random_tris_balls(&s, &r, 10, 0.05, 0.4);
+    for (int i = 0; i < NT; i++) { /* small triangles: room between them */
+        RfTriangle *t = &s.tris[i];
+        t->p2 = rf_vec3_add(t->p1, rf_vec3_scale(rf_vec3_sub(t->p2, t->p1), 0.3));
+        t->p3 = rf_vec3_add(t->p1, rf_vec3_scale(rf_vec3_sub(t->p3, t->p1), 0.3));
+    }
+    RfBvh bvh;
+    RfBvhDesc d = {item_total(&s), describe, &s, 2, 0};
+    RF_CHECK_EQ_INT(rf_bvh_build(&bvh, &d), RF_OK);
+    int empty = 0;
+    for (int c = 0; c < CONES; c++) {
+        RfVec3 apex = rf_vec3(rf_test_uniform(&r, -14, 14), rf_test_uniform(&r, -14, 14), rf_test_uniform(&r, -14, 14));
+        RfVec3 w = rf_vec3_normalize(rf_vec3(rf_test_uniform(&r, -1, 1), rf_test_uniform(&r, -1, 1), rf_test_uniform(&r, -1, 1)));
+        RfVec3 u = rf_vec3_normalize(rf_vec3_cross(w, fabs(w.x) < 0.5 ? rf_vec3(1, 0, 0) : rf_vec3(0, 1, 0)));
+        RfVec3 v = rf_vec3_cross(w, u);
+        double h = rf_test_uniform(&r, 0.005, 0.12); /* half the pyramid's width at distance 1 */
+        RfVec3 corner[4], n[4];
+        for (int k = 0; k < 4; k++) {
+            double a = k == 0 || k == 3 ? -h : h, b = k < 2 ? -h : h;
+            corner[k] = rf_vec3_add(w, rf_vec3_add(rf_vec3_scale(u, a), rf_vec3_scale(v, b)));
+        }
+        for (int k = 0; k < 4; k++) {
+            n[k] = rf_vec3_cross(corner[k], corner[(k + 1) % 4]);
+            if (rf_vec3_dot(n[k], w) < 0.0)
+                n[k] = rf_vec3_neg(n[k]);
+        }
+        if (!rf_bvh_cone_empty(&bvh, apex, n, 4))
+            continue;
+        empty++;
+        for (int i = 0; i < RAYS; i++) {
+            double a = i < 4 ? (i % 2 ? h : -h) : rf_test_uniform(&r, -h, h);
+            double b = i < 4 ? (i < 2 ? h : -h) : rf_test_uniform(&r, -h, h);
+            RfRay ray = rf_ray(apex, rf_vec3_add(w, rf_vec3_add(rf_vec3_scale(u, a), rf_vec3_scale(v, b))));
+            int occluded;
+            RfBvhHit ref = brute_nearest(&s, ray, 0.0, HUGE_VAL, &occluded);
+            RfBvhRay br;
+            rf_bvh_ray_init(&bvh, &ray, &br);
+            RfBvhHit best;
+            memset(&best, 0, sizeof best);
+            best.t = HUGE_VAL;
+            int hit = rf_bvh_nearest(&bvh, &br, 0.0, &best, ball_hit, &s) ||
+                      rf_bvh_occluded(&bvh, &br, 0.0, HUGE_VAL, ball_hit, &s, NULL);
+            if (ref.key != 0 || occluded || hit)
+                rf_test_fail(__FILE__, __LINE__, "cone %d called empty, ray %d hits (brute force key %llu, BVH %d)", c,
+                             i, (unsigned long long)ref.key, hit);
+            rf_test_checks++;
+        }
+    }
+    /* both answers occur (the scene is sparse, the apexes inside and around it) */
+    RF_CHECK(empty > CONES / 5 && empty < CONES * 4 / 5);
+    RfVec3 zero[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, nan4[4] = {{NAN, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    RF_CHECK_EQ_INT(rf_bvh_cone_empty(&bvh, rf_vec3(100, 100, 100), zero, 4), 0);
+    RF_CHECK_EQ_INT(rf_bvh_cone_empty(&bvh, rf_vec3(100, 100, 100), nan4, 4), 0);
+    /* a cone that holds a sphere's centre is not empty */
+    RfVec3 at = s.balls[0].center, from = rf_vec3_add(at, rf_vec3(0, 0, 30));
+    RfVec3 box4[4] = {{0, 1, -0.01}, {0, -1, -0.01}, {1, 0, -0.01}, {-1, 0, -0.01}}; /* around -z */
+    RF_CHECK_EQ_INT(rf_bvh_cone_empty(&bvh, from, box4, 4), 0);
+    rf_bvh_free(&bvh);
+    RfBvh none;
+    RfBvhDesc d0 = {0, describe, &s, 1, 0};
+    RF_CHECK_EQ_INT(rf_bvh_build(&none, &d0), RF_OK);
+    RF_CHECK_EQ_INT(rf_bvh_cone_empty(&none, from, box4, 4), 1);
+    rf_bvh_free(&none);
+    free(s.tris);
+    free(s.sides);
+    free(s.balls);
+}
+
 const RfTest rf_tests_bvh[] = {
     {"bvh_cones_vs_brute_force", t_bvh_cones},
+    {"bvh_cone_empty_vs_brute_force", t_bvh_cone_empty},
     {"bvh_random_vs_brute_force", t_bvh_random},
     {"bvh_shared_edges_vs_brute_force", t_bvh_shared_edges},
     {"bvh_degenerate", t_bvh_degenerate},

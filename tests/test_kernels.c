@@ -120,8 +120,77 @@ static void t_kernels_choice(void)
                         rf_kernel_compiled(k));
 }
 
+/* Background tiles: where no camera ray of a tile can hit anything, the specialised kernels fill
+ * it without tracing; tetra (mostly sky) and whitted (sky above the ground) at 1 and 4 samples,
+ * the 4-sample run with its variance image: the same image, variance and ray counts as the
+ * general kernel, which skips no tile. A lens skips none, nor does a scene with a plane. */
+static void t_kernels_background_tiles(void)
+{
+    const char *scenes[2] = {"scenes/spd/tetra.nff", "scenes/whitted.rf"};
+    char err[512];
+    for (int i = 0; i < 2; i++) {
+        RfScene s;
+        RF_CHECK_EQ_INT(rf_scene_load(scenes[i], NULL, &s, err, sizeof err), RF_OK);
+        for (int spp = 1; spp <= 4; spp += 3) {
+            RfImage img[2], var[2];
+            RfRenderStats st[2];
+            for (int general = 0; general < 2; general++) {
+                RfRenderOptions o = rf_render_options_default();
+                o.width = 160;
+                o.height = 128;
+                o.threads = 2;
+                o.samples = spp;
+                o.variance = spp > 1 ? &var[general] : NULL;
+                o.kernel = general ? rf_kernel_all_parts() : 0;
+                RF_CHECK_EQ_INT(rf_render(&s, &o, &img[general], &st[general]), RF_OK);
+            }
+            RF_CHECK(st[0].background_tiles >= 10); /* of 80 */
+            RF_CHECK_EQ_INT((int)st[1].background_tiles, 0);
+            RF_CHECK(memcmp(img[0].data, img[1].data, sizeof(float) * 3 * 160 * 128) == 0);
+            if (spp > 1) {
+                RF_CHECK(memcmp(var[0].data, var[1].data, sizeof(float) * 3 * 160 * 128) == 0);
+                rf_image_free(&var[0]);
+                rf_image_free(&var[1]);
+            }
+            RF_CHECK(st[0].primary_rays == st[1].primary_rays && st[0].shadow_rays == st[1].shadow_rays &&
+                     st[0].secondary_rays == st[1].secondary_rays);
+            rf_image_free(&img[0]);
+            rf_image_free(&img[1]);
+        }
+        rf_scene_free(&s);
+    }
+    /* the tracer's answer: a narrow cone from far out, looking away from everything, is empty
+     * for tetra; for a scene with a plane (an item without a box) never */
+    RfVec3 away[4] = {{0, 1, 0.01}, {0, -1, 0.01}, {1, 0, 0.01}, {-1, 0, 0.01}}; /* around +z */
+    const char *cone_scenes[2] = {"scenes/spd/tetra.nff", "scenes/ellipsoid.rf"};
+    for (int i = 0; i < 2; i++) {
+        RfScene s;
+        RfTracer *t;
+        RF_CHECK_EQ_INT(rf_scene_load(cone_scenes[i], NULL, &s, err, sizeof err), RF_OK);
+        RF_CHECK_EQ_INT(rf_tracer_create(&s, &t), RF_OK);
+        RF_CHECK_EQ_INT(rf_tracer_cone_empty(t, rf_vec3(0, 0, 1000), away, 4), i == 0);
+        RF_CHECK_EQ_INT(rf_tracer_cone_empty(t, rf_vec3(0, 0, -1000), away, 4), 0); /* looking at it */
+        rf_tracer_free(t);
+        rf_scene_free(&s);
+    }
+    RfScene s;
+    RF_CHECK_EQ_INT(rf_scene_load("scenes/spd/tetra.nff", NULL, &s, err, sizeof err), RF_OK);
+    RfRenderOptions o = rf_render_options_default();
+    o.width = 160;
+    o.height = 128;
+    o.aperture = 0.02; /* a lens: rays from all over it */
+    o.focus = 3.0;
+    RfImage img;
+    RfRenderStats st;
+    RF_CHECK_EQ_INT(rf_render(&s, &o, &img, &st), RF_OK);
+    RF_CHECK_EQ_INT((int)st.background_tiles, 0);
+    rf_image_free(&img);
+    rf_scene_free(&s);
+}
+
 const RfTest rf_tests_kernels[] = {
     {"kernels_identical_to_general", t_kernels_identical},
     {"kernels_choice", t_kernels_choice},
+    {"kernels_background_tiles", t_kernels_background_tiles},
     RF_TEST_END,
 };

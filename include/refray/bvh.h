@@ -178,6 +178,15 @@ int rf_bvh_nearest_any_side(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvh
 int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,
                     RfBvhItemFn fn, void *ctx, uint64_t *key);
 
+/* 1 when no ray from apex inside the cone {x : <n_k, x - apex> >= 0 for k < count} can reach a
+ * leaf: the walk of every such ray stops at boxes that lie outside one of the planes by more
+ * than 2^-13 S, S the largest magnitude among apex's and the root boxes' coordinates. The node
+ * test reads the float boxes (rounded outward when built) and is conservative to about 2^-19 S
+ * in the distances it compares, so such a ray enters none of them (docs/performance.md): a
+ * frustum of camera rays that this holds for hits nothing in the BVH. 0 when in doubt (a NaN
+ * or zero normal). */
+int rf_bvh_cone_empty(const RfBvh *bvh, RfVec3 apex, const RfVec3 *normals, int count);
+
 #ifdef __cplusplus
 }
 #endif

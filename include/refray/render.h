@@ -110,6 +110,8 @@ typedef struct {
     uint64_t primary_rays, shadow_rays, secondary_rays;
     uint64_t invalid_samples; /* samples whose radiance was NaN or Inf: counted, replaced by 0 */
     uint64_t adaptive_pixels; /* §3.9 adaptive supersampling: the pixels subdivided */
+    uint64_t background_tiles; /* tiles no camera ray of which can hit anything (a pinhole camera,
+                                  rf_tracer_cone_empty): the background, no ray traced */
     /* the first invalid sample (lowest pixel index, then sample): its pixel, sample index (-1:
      * the pixel's mean overflows float), value, and path ("camera -> sphere #3 (material 'red')
      * -> mirror ray -> ..."), re-traced after the render */
@@ -155,6 +157,11 @@ RfStatus rf_tracer_create_opts(const RfScene *scene, const RfTracerOptions *opt,
 void rf_tracer_free(RfTracer *tracer);
 /* Bytes held by the tracer: BVH nodes, triangle blocks, item tables. */
 size_t rf_tracer_bytes(const RfTracer *tracer);
+/* 1 when no ray from apex inside the cone {x : <n_k, x - apex> >= 0, k < count} can hit
+ * anything (rf_bvh_cone_empty on the world's BVH); 0 when it may, or when some item is tested
+ * for every ray (planes, moving instances, instances of unbounded objects) or every item is
+ * (brute force). */
+int rf_tracer_cone_empty(const RfTracer *tracer, RfVec3 apex, const RfVec3 *normals, int count);
 
 /* The nearest hit along a ray (t in [t_min, t_max)); returns the primitive index or -1. Of
  * several primitives hit at the same t, the lowest primitive index wins (a convex polygon's fan

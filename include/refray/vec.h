@@ -85,6 +85,13 @@ static inline RfVec3 rf_vec3_cross(RfVec3 a, RfVec3 b)
 
 /* §2.1 |a| = sqrt(sum a_i^2) (erratum: the script drops the square). */
 static inline double rf_vec3_length(RfVec3 a) { return sqrt(rf_vec3_dot(a, a)); }
+/* The largest |coordinate| (the infinity norm); a NaN coordinate is passed over. */
+static inline double rf_vec3_max_abs(RfVec3 v)
+{
+    double m = fabs(v.x) > 0.0 ? fabs(v.x) : 0.0;
+    m = fabs(v.y) > m ? fabs(v.y) : m;
+    return fabs(v.z) > m ? fabs(v.z) : m;
+}
 
 /* a/|a|; the zero vector stays zero (callers that need a direction check the length first). */
 static inline RfVec3 rf_vec3_normalize(RfVec3 a)

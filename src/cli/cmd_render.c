@@ -445,12 +445,13 @@ int rf_cmd_render(int argc, char **argv)
     if (!quiet) {
         unsigned long long rays = st.primary_rays + st.shadow_rays + st.secondary_rays;
         fprintf(stderr, "refray render: %s %dx%d, %d spp: %llu rays (%llu primary, %llu shadow, %llu secondary); "
-                        "load %.3f s, build %.3f s, trace %.3f s, %.2f Mrays/s, %d thread%s (%.1f %% idle), %llu invalid samples\n",
+                        "load %.3f s, build %.3f s, trace %.3f s, %.2f Mrays/s, %d thread%s (%.1f %% idle), %llu background tiles, "
+                        "%llu invalid samples\n",
                 scene_path, st.width, st.height, st.samples, rays, (unsigned long long)st.primary_rays,
                 (unsigned long long)st.shadow_rays, (unsigned long long)st.secondary_rays, load_secs,
                 st.build_seconds, st.trace_seconds,
                 st.trace_seconds > 0 ? rays / st.trace_seconds * 1e-6 : 0.0, st.threads, st.threads == 1 ? "" : "s", 100.0 * st.idle_share,
-                (unsigned long long)st.invalid_samples);
+                (unsigned long long)st.background_tiles, (unsigned long long)st.invalid_samples);
     }
     return rc;
 }

@@ -496,6 +496,52 @@ static inline int traverse(const RfBvh *bvh, RfBvhRay *r, double t_min, RfBvhHit
     }
 }
 
+/* Whether the box of child k of node n lies outside one of the cone's planes by more than
+ * margin: its corner farthest to the inside of each plane decides. */
+static int box_outside_cone(const RfBvhNode *n, int k, RfVec3 apex, const RfVec3 *normals, int count,
+                            double margin)
+{
+    for (int i = 0; i < count; i++) {
+        RfVec3 v = normals[i];
+        RfVec3 c = rf_vec3(v.x > 0.0 ? n->b[1][k] : n->b[0][k], v.y > 0.0 ? n->b[3][k] : n->b[2][k],
+                           v.z > 0.0 ? n->b[5][k] : n->b[4][k]);
+        if (rf_vec3_dot(v, rf_vec3_sub(c, apex)) < -margin * rf_vec3_length(v))
+            return 1;
+    }
+    return 0;
+}
+
+int rf_bvh_cone_empty(const RfBvh *bvh, RfVec3 apex, const RfVec3 *normals, int count)
+{
+    if (bvh->node_count == 0)
+        return 1;
+    for (int i = 0; i < count; i++)
+        if (!(rf_vec3_dot(normals[i], normals[i]) > 0.0))
+            return 0;
+    const RfBvhNode *root = &bvh->nodes[0];
+    double s = rf_vec3_max_abs(apex); /* S */
+    for (int k = 0; k < WIDTH; k++)
+        if (REF_KIND(root->ref[k]) != KIND_EMPTY)
+            for (int r = 0; r < 6; r++)
+                s = fabsf(root->b[r][k]) > s ? fabsf(root->b[r][k]) : s;
+    double margin = 0x1p-13 * s; /* inf for an unbounded box: then nothing is outside */
+    uint32_t stack[STACK];
+    int top = 0;
+    stack[top++] = REF_INNER(0);
+    while (top > 0) {
+        const RfBvhNode *n = &bvh->nodes[REF_INDEX(stack[--top])];
+        for (int k = 0; k < WIDTH; k++) {
+            uint32_t ref = n->ref[k];
+            if (REF_KIND(ref) == KIND_EMPTY || box_outside_cone(n, k, apex, normals, count, margin))
+                continue;
+            if (REF_KIND(ref) != KIND_INNER)
+                return 0; /* a leaf the cone may reach */
+            stack[top++] = ref;
+        }
+    }
+    return 1;
+}
+
 int rf_bvh_nearest(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best,
                    RfBvhItemFn fn, void *ctx)
 {

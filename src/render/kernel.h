@@ -5,6 +5,7 @@
 #ifndef RF_RENDER_KERNEL_H
 #define RF_RENDER_KERNEL_H
 
+#include <float.h>
 #include <stdint.h>
 
 #include "refray/camera.h"
@@ -32,6 +33,12 @@ enum {
     RF_K_ALL = (1u << 14) - 1,  /* the general kernel */
     RF_K_COUNT = 14
 };
+
+/* A radiance the film takes: finite and not negative in every channel (-0 is fine). */
+static inline int rf_kernel_rgb_valid(RfRgb c)
+{
+    return c.r >= 0.0 && c.r <= DBL_MAX && c.g >= 0.0 && c.g <= DBL_MAX && c.b >= 0.0 && c.b <= DBL_MAX;
+}
 
 /* Sampled dimensions (sampling.h): the pixel position, the lens, the time, then per path vertex
  * (depth) 64 slots: 0 the glossy mirror ray, 1 the glossy refracted ray, 2 + i light i. */
@@ -113,6 +120,10 @@ typedef struct {
     uint64_t *shadow_cache;         /* per thread and light: the last occluder (rf_tracer_occluded_cached) */
     RfMotionState **motion;         /* per thread: moving instances at the sample's time (or NULL) */
     const RfScene *scene;           /* for the names in an explained path */
+    /* 1: a tile whose camera rays provably meet nothing (rf_kernel_tile_misses) gets the
+     * background without a ray traced; 0 where a tile is always traced (a lens, motion, a filter
+     * wider than the pixel, refray trace, an invalid background). Never in the general kernel. */
+    int cull;
 } RfKernelJob;
 
 typedef struct {

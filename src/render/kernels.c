@@ -35,12 +35,6 @@ static inline double rf_kernel_rgb_diff(RfRgb a, RfRgb b)
     return m;
 }
 
-/* A radiance the film takes: finite and not negative in every channel (-0 is fine). */
-static inline int rf_kernel_rgb_valid(RfRgb c)
-{
-    return c.r >= 0.0 && c.r <= DBL_MAX && c.g >= 0.0 && c.g <= DBL_MAX && c.b >= 0.0 && c.b <= DBL_MAX;
-}
-
 /* Counts an invalid sample and keeps the thread's first (lowest pixel, then sample). */
 static void rf_kernel_note_invalid(RfRenderStats *st, int width, uint64_t pixel, int sample, RfRgb c)
 {
@@ -72,6 +66,30 @@ static void rf_kernel_store(const RfKernelJob *job, RfRenderStats *st, int x, in
     }
 }
 
+/* 1 when no camera ray of the tile can hit anything (a pinhole camera): the pyramid from the
+ * eye through the tile's pixels, widened by a pixel on each side (which holds every ray as
+ * rounded, by a wide margin), reaches no leaf of the BVH (rf_tracer_cone_empty). */
+static int rf_kernel_tile_misses(const RfKernelJob *job, RfTile tile)
+{
+    const RfCamera *cam = &job->camera;
+    const double xs[4] = {tile.x0 - 1.0, tile.x1 + 1.0, tile.x1 + 1.0, tile.x0 - 1.0};
+    const double ys[4] = {tile.y0 - 1.0, tile.y0 - 1.0, tile.y1 + 1.0, tile.y1 + 1.0};
+    RfVec3 d[4], mid = rf_vec3(0.0, 0.0, 0.0), side[4];
+    for (int i = 0; i < 4; i++) {
+        d[i] = rf_camera_to_world(cam, rf_camera_plane_point(cam, xs[i], ys[i]));
+        mid = rf_vec3_add(mid, d[i]);
+    }
+    for (int i = 0; i < 4; i++) { /* the side planes through the eye, normals inward */
+        side[i] = rf_vec3_cross(d[i], d[(i + 1) % 4]);
+        double s = rf_vec3_dot(side[i], mid);
+        if (!(s != 0.0))
+            return 0;
+        if (s < 0.0)
+            side[i] = rf_vec3_neg(side[i]);
+    }
+    return rf_tracer_cone_empty(job->tracer, cam->eye, side, 4);
+}
+
 /* Where pixel (x, y)'s centre value is kept (adaptive supersampling, kernel.h). */
 static inline size_t rf_kernel_centre(const RfKernelJob *job, int x, int y)
 {
@@ -99,6 +117,28 @@ static void rf_kernel_store_variance(const RfKernelJob *job, int x, int y, RfRgb
         double var = (q[c] - s[c] * s[c] / n) / ((double)n - 1.0) / n;
         v[c] = (float)(var > 0.0 ? var : 0.0);
     }
+}
+
+/* A region of n background samples per pixel (rf_kernel_tile_misses): the pixel sums as the
+ * tile's loop makes them (one sample: the sample itself; more: added to +0 in turn), the same
+ * primary ray count. */
+static void rf_kernel_background(const RfKernelJob *job, RfRenderStats *st, RfTile r, int n)
+{
+    RfRgb bg = job->background, sum = bg, sq = rf_rgb(0, 0, 0);
+    if (n > 1) {
+        sum = sq;
+        for (int k = 0; k < n; k++) {
+            sum = rf_rgb_add(sum, bg);
+            sq = rf_rgb_add(sq, rf_rgb_mul(bg, bg));
+        }
+    }
+    for (int y = r.y0; y < r.y1; y++)
+        for (int x = r.x0; x < r.x1; x++) {
+            st->primary_rays += (uint64_t)n;
+            if (n > 1 && job->variance)
+                rf_kernel_store_variance(job, x, y, sum, sq, n);
+            rf_kernel_store(job, st, x, y, rf_rgb(sum.r / n, sum.g / n, sum.b / n));
+        }
 }
 
 /* Appends to an explained path (kernel.h RfPathLog). */

@@ -412,6 +412,8 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
         if (!job->motion)
             st = RF_ERR_NOMEM;
     }
+    job->cull = !(cam->aperture_radius > 0.0) && !job->moving && !opt->trace &&
+                (res.samples == 1 || job->filter_box) && rf_kernel_rgb_valid(job->background);
     if (st == RF_OK) {
         stats->accel_bytes = rf_tracer_bytes(tracer);
         job->tracer = tracer;
@@ -440,6 +442,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
         stats->secondary_rays += job->per_thread[i].secondary_rays;
         stats->invalid_samples += job->per_thread[i].invalid_samples;
         stats->adaptive_pixels += job->per_thread[i].adaptive_pixels;
+        stats->background_tiles += job->per_thread[i].background_tiles;
         const RfRenderStats *t = &job->per_thread[i];
         if (t->invalid.found &&
             (!stats->invalid.found || t->invalid.y < stats->invalid.y ||

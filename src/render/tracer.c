@@ -408,6 +408,13 @@ RfStatus rf_tracer_create(const RfScene *scene, RfTracer **out)
     return rf_tracer_create_opts(scene, NULL, out);
 }
 
+int rf_tracer_cone_empty(const RfTracer *t, RfVec3 apex, const RfVec3 *normals, int count)
+{
+    if (t->opt.brute_force || t->world.unbounded_count > 0)
+        return 0;
+    return t->world.bvh_count == 0 || rf_bvh_cone_empty(&t->world.bvh, apex, normals, count);
+}
+
 size_t rf_tracer_bytes(const RfTracer *t)
 {
     const Level *lv[2] = {&t->world, NULL};
@@ -428,13 +435,6 @@ size_t rf_tracer_bytes(const RfTracer *t)
 }
 
 /* max_i |v_i|, a NaN coordinate ignored */
-static double max_abs3(RfVec3 v)
-{
-    double m = fabs(v.x) > 0.0 ? fabs(v.x) : 0.0; /* a NaN coordinate is passed over */
-    m = fabs(v.y) > m ? fabs(v.y) : m;
-    return fabs(v.z) > m ? fabs(v.z) : m;
-}
-
 /* ---- intersection ---- */
 
 /* A nearest-hit (or, shadow = 1, any-hit) query through the levels. The details of the nearest
@@ -877,26 +877,26 @@ int rf_tracer_intersect_at(const RfTracer *t, const RfRay *rp, const RfMotionSta
         double len = rf_vec3_length(v);
         if (len > 0.0) {
             out->point = rf_vec3_add(pr->u.sphere.center, rf_vec3_scale(v, pr->u.sphere.radius / len));
-            double sc = max_abs3(pr->u.sphere.center) + pr->u.sphere.radius;
-            out->scale = rf_max_num(max_abs3(out->point), sc);
+            double sc = rf_vec3_max_abs(pr->u.sphere.center) + pr->u.sphere.radius;
+            out->scale = rf_max_num(rf_vec3_max_abs(out->point), sc);
             reprojected = 1;
         }
     } else if (!q.instanced && q.item.sub >= 0 && (pr->type == RF_PRIM_TRIANGLE || pr->type == RF_PRIM_POLYGON)) {
         RfTriangle tri = q.tri ? *q.tri : item_triangle(t, q.item); /* the BVH block's copy: the same doubles */
         out->point = rf_vec3_add(rf_vec3_add(rf_vec3_scale(tri.p1, q.hit.l[0]), rf_vec3_scale(tri.p2, q.hit.l[1])),
                                  rf_vec3_scale(tri.p3, q.hit.l[2]));
-        out->scale = rf_max_num(max_abs3(tri.p1), rf_max_num(max_abs3(tri.p2), max_abs3(tri.p3)));
+        out->scale = rf_max_num(rf_vec3_max_abs(tri.p1), rf_max_num(rf_vec3_max_abs(tri.p2), rf_vec3_max_abs(tri.p3)));
         reprojected = 1;
     } else if (!q.instanced && pr->type == RF_PRIM_PLANE) {
         RfVec3 n = pr->u.plane.normal; /* any length */
         double nn = rf_vec3_dot(n, n);
         out->point = rf_vec3_sub(out->point, rf_vec3_scale(n, (rf_vec3_dot(n, out->point) - pr->u.plane.offset) / nn));
-        out->scale = rf_max_num(max_abs3(out->point), fabs(pr->u.plane.offset) / sqrt(nn));
+        out->scale = rf_max_num(rf_vec3_max_abs(out->point), fabs(pr->u.plane.offset) / sqrt(nn));
         reprojected = 1;
     }
     if (!reprojected) {
-        double so = max_abs3(ray.origin);
-        out->scale = max_abs3(out->point);
+        double so = rf_vec3_max_abs(ray.origin);
+        out->scale = rf_vec3_max_abs(out->point);
         out->scale = so > out->scale ? so : out->scale;
     }
     if (pr->type == RF_PRIM_CONE)
