@@ -120,8 +120,8 @@ static void rf_kernel_store_variance(const RfKernelJob *job, int x, int y, RfRgb
 }
 
 /* A region of n background samples per pixel (rf_kernel_tile_misses): the pixel sums as the
- * tile's loop makes them (one sample: the sample itself; more: added to +0 in turn), the same
- * primary ray count. */
+ * tile's loop makes them (one sample: the sample itself; more: added to +0 in turn), stored as
+ * rf_kernel_store stores them, once for every pixel; the same primary ray count. */
 static void rf_kernel_background(const RfKernelJob *job, RfRenderStats *st, RfTile r, int n)
 {
     RfRgb bg = job->background, sum = bg, sq = rf_rgb(0, 0, 0);
@@ -132,16 +132,23 @@ static void rf_kernel_background(const RfKernelJob *job, RfRenderStats *st, RfTi
             sq = rf_rgb_add(sq, rf_rgb_mul(bg, bg));
         }
     }
-    for (int y = r.y0; y < r.y1; y++)
-        for (int x = r.x0; x < r.x1; x++) {
-            st->primary_rays += (uint64_t)n;
+    RfRgb mean = rf_rgb(sum.r / n, sum.g / n, sum.b / n);
+    const float v[3] = {(float)mean.r, (float)mean.g, (float)mean.b};
+    int finite = isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+    st->primary_rays += (uint64_t)n * (uint64_t)(r.x1 - r.x0) * (uint64_t)(r.y1 - r.y0);
+    for (int y = r.y0; y < r.y1; y++) {
+        float *px = job->img->data + ((size_t)(y - job->img_y0) * (size_t)job->img->width + (size_t)(r.x0 - job->img_x0)) * 3;
+        for (int x = r.x0; x < r.x1; x++, px += 3) {
             if (n > 1 && job->variance)
                 rf_kernel_store_variance(job, x, y, sum, sq, n);
-            rf_kernel_store(job, st, x, y, rf_rgb(sum.r / n, sum.g / n, sum.b / n));
+            if (finite)
+                memcpy(px, v, sizeof v);
+            else /* a background beyond float: each pixel noted as the loop would */
+                rf_kernel_store(job, st, x, y, mean);
         }
+    }
 }
 
-/* Appends to an explained path (kernel.h RfPathLog). */
 static void rf_kernel_log(RfPathLog *log, const char *fmt, ...)
 {
     va_list ap;
