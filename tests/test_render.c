@@ -1061,8 +1061,27 @@ static void t_cli_render_output(void)
     static const struct { const char *name, *has; } attrs[] = {
         {"refray:version", ""}, {"refray:scene", "scenes/whitted.rf"}, {"refray:settings", "64x48, 1 spp stratified, filter box 0.5, depth 8"},
         {"refray:renderTime", " s"}, {"refray:threads", "2"}, {"refray:compiler", ""},
-        {"refray:flags", "-ffp-contract=off"}, {"refray:cpu", ""},
+        {"refray:flags", "-ffp-contract=off"}, {"refray:cpu", ""}, {"refray:backgroundTiles", "0"},
     };
+    /* whitted at 64x48 has no tile of sky alone; tetra at 128x128 has: the header and the
+     * summary line give the same count */
+    char tetra[256];
+    snprintf(tetra, sizeof tetra, "%s/t.exr", dir);
+    snprintf(cmd, sizeof cmd, "%s render scenes/spd/tetra.nff -o %s --width 128 --height 128 2>&1", rf_test_bin(), tetra);
+    const char *tout = rf_test_run(cmd, &code);
+    RF_CHECK_EQ_INT(code, 0);
+    const char *said = strstr(tout, " background tiles");
+    char *bg = NULL;
+    RF_CHECK(said != NULL);
+    RF_CHECK_EQ_INT(rf_exr_read_attr(tetra, "refray:backgroundTiles", &bg, err, sizeof err), RF_OK);
+    if (said && bg) {
+        const char *num = said;
+        while (num > tout && num[-1] >= '0' && num[-1] <= '9')
+            num--;
+        RF_CHECK(atoi(bg) > 0 && atoi(num) == atoi(bg));
+    }
+    free(bg);
+    remove(tetra);
     for (size_t k = 0; k < sizeof attrs / sizeof attrs[0]; k++) {
         char *val = NULL;
         RfStatus st = rf_exr_read_attr(exr, attrs[k].name, &val, err, sizeof err);

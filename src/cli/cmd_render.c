@@ -388,17 +388,18 @@ int rf_cmd_render(int argc, char **argv)
         rc = RF_EXIT_FAIL;
     }
     if (exr && !rc) {
-        char timing[64], threads[32], cpu[256], load_t[32], build_t[32], trace_t[32], kernel[256];
+        char timing[64], threads[32], cpu[256], load_t[32], build_t[32], trace_t[32], kernel[256], bg[32];
         cpu_model(cpu, sizeof cpu);
         snprintf(timing, sizeof timing, "%.3f s", secs);
         snprintf(load_t, sizeof load_t, "%.3f s", load_secs);
         snprintf(build_t, sizeof build_t, "%.3f s", st.build_seconds);
         snprintf(trace_t, sizeof trace_t, "%.3f s", st.trace_seconds);
         snprintf(threads, sizeof threads, "%d", st.threads);
+        snprintf(bg, sizeof bg, "%llu", (unsigned long long)st.background_tiles);
         RfImageAttr attrs[] = {
             identity[0], identity[1], identity[2], identity[3], {"refray:scene", scene_path},
             {"refray:renderTime", timing}, {"refray:loadTime", load_t}, {"refray:buildTime", build_t},
-            {"refray:traceTime", trace_t}, {"refray:kernel", rf_kernel_name(st.kernel, kernel, sizeof kernel)},
+            {"refray:traceTime", trace_t}, {"refray:kernel", rf_kernel_name(st.kernel, kernel, sizeof kernel)}, {"refray:backgroundTiles", bg},
             {"refray:threads", threads}, {"refray:compiler", RF_COMPILER},
             {"refray:flags", RF_BUILD_FLAGS}, {"refray:cpu", cpu},
         };
