@@ -149,6 +149,7 @@ static void rf_kernel_background(const RfKernelJob *job, RfRenderStats *st, RfTi
     }
 }
 
+/* Appends to an explained path (kernel.h RfPathLog). */
 static void rf_kernel_log(RfPathLog *log, const char *fmt, ...)
 {
     va_list ap;
