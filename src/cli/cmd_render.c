@@ -399,8 +399,8 @@ int rf_cmd_render(int argc, char **argv)
         RfImageAttr attrs[] = {
             identity[0], identity[1], identity[2], identity[3], {"refray:scene", scene_path},
             {"refray:renderTime", timing}, {"refray:loadTime", load_t}, {"refray:buildTime", build_t},
-            {"refray:traceTime", trace_t}, {"refray:kernel", rf_kernel_name(st.kernel, kernel, sizeof kernel)}, {"refray:backgroundTiles", bg},
-            {"refray:threads", threads}, {"refray:compiler", RF_COMPILER},
+            {"refray:traceTime", trace_t}, {"refray:kernel", rf_kernel_name(st.kernel, kernel, sizeof kernel)},
+            {"refray:backgroundTiles", bg}, {"refray:threads", threads}, {"refray:compiler", RF_COMPILER},
             {"refray:flags", RF_BUILD_FLAGS}, {"refray:cpu", cpu},
         };
         if (rf_arg_write_image(exr, &img, attrs, (int)(sizeof attrs / sizeof attrs[0]), eopt, popt, err, sizeof err) !=

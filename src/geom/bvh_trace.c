@@ -118,15 +118,15 @@ static void tri_setup(const RfBvh *bvh, RfBvhRay *r)
 
 /* ---- traversal: node and triangle kernels ------------------------------------------------ */
 
-/* The children a ray enters within [tmin, tmax]: bit k of the result; tn[k] their entry
- * distances. NaN (0 * inf: a parallel ray with its origin on a slab plane) is the first
- * operand of max/min and drops out, which keeps the box (conservative). */
 /* Row `off` (a byte offset, RfBvhRay.rows) of a node's boxes. */
 static inline const float *row_scalar(const RfBvhNode *n, size_t off)
 {
     return (const float *)(const void *)((const char *)n->b + off);
 }
 
+/* The children a ray enters within [tmin, tmax]: bit k of the result; tn[k] their entry
+ * distances. NaN (0 * inf: a parallel ray with its origin on a slab plane) is the first
+ * operand of max/min and drops out, which keeps the box (conservative). */
 static inline unsigned node_test_scalar(const RfBvhNode *n, const RfBvhRay *r, float tmin, float tmax, float *tn)
 {
     unsigned mask = 0;

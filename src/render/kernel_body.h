@@ -450,7 +450,7 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
 {
     const RfKernelJob *job = ctx;
     int n = RF_ON(RF_K_JITTER) ? job->samples : 1;
-    if (RF_KPARTS != RF_K_ALL && job->cull && (n == 1 || job->filter_box) && rf_kernel_tile_misses(job, tile)) {
+    if (RF_KPARTS != RF_K_ALL && job->cull && rf_kernel_tile_misses(job, tile)) { /* cull: 1 spp or the box filter */
         rf_kernel_background(job, &job->per_thread[thread], tile, n);
         job->per_thread[thread].background_tiles++;
     } else
