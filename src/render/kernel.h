@@ -117,7 +117,8 @@ typedef struct {
     RfImage *img;                   /* the crop, whose top left pixel is (img_x0, img_y0) */
     int img_x0, img_y0;
     RfRenderStats *per_thread;      /* one per thread: no sharing on the hot path */
-    uint64_t *shadow_cache;         /* per thread and light: the last occluder (rf_tracer_occluded_cached) */
+    uint64_t *shadow_cache;         /* per thread and light: the last occluder (rf_tracer_occluded_cached);
+                                       thread t's at rf_kernel_shadow_cache */
     RfMotionState **motion;         /* per thread: moving instances at the sample's time (or NULL) */
     const RfScene *scene;           /* for the names in an explained path */
     /* 1: a tile whose camera rays provably meet nothing (rf_kernel_tile_misses) gets the
@@ -125,6 +126,16 @@ typedef struct {
      * wider than the pixel, refray trace, an invalid background). Never in the general kernel. */
     int cull;
 } RfKernelJob;
+
+/* Thread t's shadow cache: light_count slots, then a cache line of 8 unused ones before the
+ * next thread's. Unoccluded shadow rays write their slot (rf_tracer_occluded_cached), so two
+ * threads' slots on one line would pass it between the cores at every such ray. */
+static inline size_t rf_kernel_shadow_stride(size_t light_count) { return light_count + 8; }
+
+static inline uint64_t *rf_kernel_shadow_cache(const RfKernelJob *job, int thread)
+{
+    return job->shadow_cache + (size_t)thread * rf_kernel_shadow_stride((size_t)job->light_count);
+}
 
 typedef struct {
     unsigned parts;   /* RF_K_* compiled in */

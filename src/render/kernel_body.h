@@ -380,7 +380,7 @@ static RfRgb RF_KNAME(camera_sample)(const RfKernelJob *job, double px, double p
 static void RF_KNAME(pixels)(const RfKernelJob *job, RfTile tile, int thread, int n)
 {
     RfRenderStats *st = &job->per_thread[thread];
-    uint64_t *shadow_cache = job->shadow_cache + (size_t)thread * (size_t)job->light_count;
+    uint64_t *shadow_cache = rf_kernel_shadow_cache(job, thread);
     const RfCamera *cam = &job->camera;
     for (int y = tile.y0; y < tile.y1; y++)
         for (int x = tile.x0; x < tile.x1; x++) {
@@ -463,7 +463,7 @@ static int RF_KNAME(adaptive_centres)(void *ctx, RfTile tile, int thread)
 {
     const RfKernelJob *job = ctx;
     RfRenderStats *st = &job->per_thread[thread];
-    uint64_t *shadow_cache = job->shadow_cache + (size_t)thread * (size_t)job->light_count;
+    uint64_t *shadow_cache = rf_kernel_shadow_cache(job, thread);
     for (int y = tile.y0; y < tile.y1; y++)
         for (int x = tile.x0; x < tile.x1; x++) {
             RfPathSample ps = {(uint64_t)y * (uint64_t)job->width + (uint64_t)x, 0, 1, RF_SAMPLER_RANDOM,
@@ -502,7 +502,7 @@ static int RF_KNAME(adaptive_refine)(void *ctx, RfTile tile, int thread)
 {
     const RfKernelJob *job = ctx;
     RfRenderStats *st = &job->per_thread[thread];
-    uint64_t *shadow_cache = job->shadow_cache + (size_t)thread * (size_t)job->light_count;
+    uint64_t *shadow_cache = rf_kernel_shadow_cache(job, thread);
     for (int y = tile.y0; y < tile.y1; y++)
         for (int x = tile.x0; x < tile.x1; x++) {
             uint64_t pixel = (uint64_t)y * (uint64_t)job->width + (uint64_t)x;

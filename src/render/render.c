@@ -345,7 +345,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     RfKernelLight *lights = malloc(sizeof *lights * (scene->light_count + 1));
     double *column_x = malloc(sizeof *column_x * (size_t)job->width);
     double *row_y = malloc(sizeof *row_y * (size_t)job->height);
-    job->shadow_cache = calloc((size_t)threads * (scene->light_count + 1), sizeof *job->shadow_cache);
+    job->shadow_cache = calloc((size_t)threads * rf_kernel_shadow_stride(scene->light_count), sizeof *job->shadow_cache);
     unsigned char *highlight = malloc(scene->material_count + 1);
     job->centres = res.adaptive ? malloc(sizeof *job->centres * (size_t)job->centres_w * (size_t)(around.y1 - around.y0))
                                 : NULL;
