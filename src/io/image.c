@@ -1,5 +1,5 @@
-/* Float images: allocation, the write-then-rename helper and the error helpers that the EXR and
- * PNG readers and writers share (reading by signature is read.c, above them). */
+/* Float images: allocation, the formats' names, the write-then-rename helper and the error
+ * helpers that the readers and writers share (reading by signature is read.c, above them). */
 #include "io_internal.h"
 
 #include <errno.h>
@@ -31,6 +31,13 @@ RfStatus rf_io_fail_errno(RfStatus status, char *err, size_t err_size, const cha
     if (strerror_r(errnum, msg, sizeof msg) != 0) /* XSI strerror_r: strerror() is not thread-safe */
         snprintf(msg, sizeof msg, "error %d", errnum);
     return rf_io_fail(status, err, err_size, path, "%s: %s", what, msg);
+}
+
+/* The formats' names, here below the readers: read.c's dispatcher and foreign.c's claims use them. */
+const char *rf_image_file_name(RfImageFile f)
+{
+    static const char *const names[] = {"unknown", "EXR", "PNG", "PNM", "JPEG", "TIFF", "BMP", "HDR", "TGA"};
+    return (unsigned)f < sizeof names / sizeof names[0] ? names[f] : "unknown";
 }
 
 /* Pixel count of a width x height image, or 0 when the size is not acceptable. */

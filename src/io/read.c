@@ -7,12 +7,6 @@
 #include <string.h>
 #include <strings.h>
 
-const char *rf_image_file_name(RfImageFile f)
-{
-    static const char *const names[] = {"unknown", "EXR", "PNG", "PNM", "JPEG", "TIFF", "BMP", "HDR", "TGA"};
-    return (unsigned)f < sizeof names / sizeof names[0] ? names[f] : "unknown";
-}
-
 static int has_suffix(const char *path, const char *suffix)
 {
     size_t n = strlen(path), k = strlen(suffix);

@@ -24,7 +24,6 @@
 
 #include "reader.h"
 #include "refray/hash.h"
-#include "refray/hash.h"
 #include "refray/numeric.h"
 #include "refray/scene_io.h"
 

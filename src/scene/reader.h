@@ -1,33 +1,11 @@
-/* refray: helpers shared by the scene model and its readers (internal): rf__msgf and the
- * polygon measure in scene.c, the whole-scene checks in scene_check.c, the reader steps in
- * reader.c. */
+/* refray: the steps every scene reader shares (internal; reader.c), above the model's own
+ * helpers (scene_internal.h), which scene.c, scene_graph.c and scene_check.c use without the
+ * readers. */
 #ifndef RF_SCENE_READER_H
 #define RF_SCENE_READER_H
 
-#include <math.h>
-
 #include "lexer.h"
-#include "refray/scene.h"
-
-/* printf into msg (when msg and msgsz) and return st: the plain messages of scene.c and
- * scene_graph.c, which the readers prefix with a file position. */
-RfStatus rf__msgf(char *msg, size_t msgsz, RfStatus st, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 4, 5)))
-#endif
-    ;
-
-/* Finite coordinates; finite and non-negative channels. */
-static inline int rf__finite3(RfVec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
-static inline int rf__nonneg_rgb(RfRgb c)
-{
-    return isfinite(c.r) && isfinite(c.g) && isfinite(c.b) && c.r >= 0.0 && c.g >= 0.0 && c.b >= 0.0;
-}
-
-/* Twice the vector area of a polygon (the sum of the fan's cross products about v[0]; equal to
- * Newell's normal) and the largest squared distance of a vertex from v[0]: what the model's
- * degeneracy test measures (scene.c). */
-RfVec3 rf__polygon_area_vector(const RfVec3 *v, int n, double *ext2);
+#include "scene_internal.h"
 
 /* Checks and appends a primitive; a failure is reported at p->loc. */
 RfStatus rf__reader_add_prim(RfLexer *lx, RfScene *scene, const RfPrimitive *p);

@@ -2,7 +2,7 @@
  * (scene.h). */
 #include "refray/scene.h"
 #include "refray/hash.h"
-#include "reader.h"
+#include "scene_internal.h"
 #include "refray/numeric.h"
 #include "refray/transform.h"
 

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "reader.h"
+#include "scene_internal.h"
 
 static RfStatus check_light(const RfLight *l, char *msg, size_t msgsz)
 {

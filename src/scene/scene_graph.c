@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "refray/scene.h"
-#include "reader.h"
+#include "scene_internal.h"
 #include "refray/bvh.h" /* RfAabb */
 #include "refray/transform.h"
 
