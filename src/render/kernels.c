@@ -126,7 +126,7 @@ static void rf_kernel_background(const RfKernelJob *job, RfRenderStats *st, RfTi
 {
     RfRgb bg = job->background, sum = bg, sq = rf_rgb(0, 0, 0);
     if (n > 1) {
-        sum = sq;
+        sum = rf_rgb(0, 0, 0); /* the loop's sums start at +0 */
         for (int k = 0; k < n; k++) {
             sum = rf_rgb_add(sum, bg);
             sq = rf_rgb_add(sq, rf_rgb_mul(bg, bg));

@@ -434,7 +434,6 @@ size_t rf_tracer_bytes(const RfTracer *t)
     return bytes;
 }
 
-/* max_i |v_i|, a NaN coordinate ignored */
 /* ---- intersection ---- */
 
 /* A nearest-hit (or, shadow = 1, any-hit) query through the levels. The details of the nearest
