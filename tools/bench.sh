@@ -122,8 +122,6 @@ ptrace() {
     awk -v s="$s" -v e="$e" "BEGIN {print e - s}" > "$tmp/povwall"
     cat "$tmp/pt"
 }
-# med N CMD...: the median of N runs of a command that prints one number
-med() { n=$1; shift; i=0; while [ $i -lt "$n" ]; do "$@"; i=$((i + 1)); done | median; }
 # pair N: POV-Ray ($POV, ptrace's arguments), POV-Ray without its ray cut-off ($POV plus
 # $POV0) and refray ($RF, rtrace's) run in turn N times, so that the host's drift hits all alike;
 # prints the three medians
@@ -198,7 +196,8 @@ fi
 # ---- 5. specialised kernels --------------------------------------------------------------------
 echo
 echo "== 5. specialised kernels: trace time with the general kernel and with the one chosen for the scene"
-echo "   (it leaves out what the scene does not need; the same image), 1 thread, medians of $runs;"
+echo "   (it leaves out what the scene does not need; the same image), 1 thread, medians of $runs4 runs of each,"
+echo "   the two kernels in turn (so that the host's drift hits both alike);"
 echo "   the general kernel itself skips per material what adds nothing (docs/performance.md); every kernel"
 echo "   but the general one also skips the background tiles (tiles no camera ray of which can hit anything)"
 printf "%-34s %-44s %9s %9s %8s %8s\n" "scene" "kernel" "general" "chosen" "speed-up" "bg tiles"
@@ -206,8 +205,16 @@ spec() {
     name=$1; shift
     [ -f "$1" ] && [ ! -f scenes/bench/mesh.rf -o "$1" != scenes/bench/mesh.rf -o -f "$mesh" ] || return 0
     k=$("$bin" info "$1" | sed -n 's/^kernel *//p')
-    g=$(med "$runs" rtrace "$@" --threads 1 --kernel general)
-    c=$(med "$runs" rtrace "$@" --threads 1)
+    : > "$tmp/kg"
+    : > "$tmp/kc"
+    i=0
+    while [ $i -lt "$runs4" ]; do
+        rtrace "$@" --threads 1 --kernel general >> "$tmp/kg"
+        rtrace "$@" --threads 1 >> "$tmp/kc"
+        i=$((i + 1))
+    done
+    g=$(median < "$tmp/kg")
+    c=$(median < "$tmp/kc")
     b=$("$bin" render "$@" --threads 1 -o "$tmp/r.exr" 2>&1 | sed -n 's/.* \([0-9]*\) background tiles.*/\1/p')
     printf "%-34s %-44s %9.3f %9.3f %7.3fx %8s\n" "$name" "$k" "$g" "$c" "$(awk -v g=$g -v c=$c 'BEGIN{print g/c}')" "$b"
 }
