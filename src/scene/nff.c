@@ -42,14 +42,6 @@ typedef struct {
     size_t coloured_cap;
 } NffReader;
 
-static RfSrcLoc loc_of(const RfToken *t)
-{
-    RfSrcLoc l;
-    l.line = t->line;
-    l.col = t->col;
-    return l;
-}
-
 /* One line of the viewpoint block: the word `key` followed by its values. */
 static RfStatus view_key(NffReader *r, const char *key, RfToken *kw)
 {
@@ -75,16 +67,16 @@ static RfStatus read_view(NffReader *r, const RfToken *v)
     if (s->has_camera)
         return rf_lex_error(lx, v->line, v->col, "second viewpoint (v): the scene has one camera");
     memset(c, 0, sizeof *c);
-    c->loc = loc_of(v);
+    c->loc = rf__token_loc(v);
     c->d = 1.0;
     c->fov_reading = r->opt->nff_fov;
     if ((st = view_key(r, "from", &kw)) || (st = rf_lex_vec3(lx, "from", &c->eye)) ||
         (st = view_key(r, "at", &kw)) || (st = rf_lex_vec3(lx, "at", &c->target)))
         return st;
-    c->target_loc = loc_of(&kw);
+    c->target_loc = rf__token_loc(&kw);
     if ((st = view_key(r, "up", &kw)) || (st = rf_lex_vec3(lx, "up", &c->up)))
         return st;
-    c->up_loc = loc_of(&kw);
+    c->up_loc = rf__token_loc(&kw);
     if ((st = view_key(r, "angle", &kw)) || (st = rf_lex_number(lx, "angle", &c->fov)) ||
         (st = rf_lex_check(lx, c->fov > 0.0 && c->fov < 180.0,
                            "angle must be in (0, 180) degrees, found %g", c->fov)))
@@ -111,7 +103,7 @@ static RfStatus read_light(NffReader *r, const RfToken *kw)
     memset(&l, 0, sizeof l);
     l.kind = RF_LIGHT_POINT;
     l.falloff = RF_FALLOFF_NONE;
-    l.loc = loc_of(kw);
+    l.loc = rf__token_loc(kw);
     if ((st = rf_lex_vec3(&r->lx, "light position", &l.position)))
         return st;
     int coloured = r->lx.tok.kind == RF_TOK_NUMBER && !r->lx.tok.bol;
@@ -153,7 +145,7 @@ static RfStatus read_material(NffReader *r, const RfToken *kw)
     m.kr = m.ks;
     m.kt = rf_rgb(t, t, t);
     m.ior = ior > 0.0 ? ior : 1.0;
-    m.loc = loc_of(kw);
+    m.loc = rf__token_loc(kw);
     if (rf_scene_add_material(r->scene, &m, &r->material))
         return rf_lex_error(lx, kw->line, kw->col, "out of memory");
     r->two_sided = t > 0.0;
@@ -167,7 +159,7 @@ static RfPrimitive new_prim(NffReader *r, RfPrimType type, const RfToken *kw)
     p.type = type;
     p.material = r->material;
     p.flags = r->two_sided ? RF_PRIM_TWO_SIDED : 0;
-    p.loc = loc_of(kw);
+    p.loc = rf__token_loc(kw);
     return p;
 }
 

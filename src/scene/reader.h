@@ -7,6 +7,15 @@
 #include "lexer.h"
 #include "scene_internal.h"
 
+/* Where a token stands, as the scene model records it (RfSrcLoc). */
+static inline RfSrcLoc rf__token_loc(const RfToken *t)
+{
+    RfSrcLoc l;
+    l.line = t->line;
+    l.col = t->col;
+    return l;
+}
+
 /* Checks and appends a primitive; a failure is reported at p->loc. */
 RfStatus rf__reader_add_prim(RfLexer *lx, RfScene *scene, const RfPrimitive *p);
 /* Appends one vertex (and its normal when n != NULL); *first gets its index when first_too. */

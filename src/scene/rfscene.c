@@ -37,14 +37,6 @@ typedef struct {
     size_t ref_count, ref_cap;
 } RfReader;
 
-static RfSrcLoc loc_of(const RfToken *t)
-{
-    RfSrcLoc l;
-    l.line = t->line;
-    l.col = t->col;
-    return l;
-}
-
 /* A colour: one number (grey) or three, each >= 0. */
 static RfStatus read_colour(RfLexer *lx, const char *what, RfRgb *c)
 {
@@ -99,18 +91,18 @@ static RfStatus read_camera(RfReader *r, const RfToken *kw)
     memset(c, 0, sizeof *c);
     c->d = 1.0;
     c->fov_reading = RF_FOV_EDGES;
-    c->loc = c->target_loc = c->up_loc = loc_of(kw);
+    c->loc = c->target_loc = c->up_loc = rf__token_loc(kw);
     while (!st && next_attr(lx, &a)) {
         if (rf_lex_is(&a, "eye")) {
             st = rf_lex_vec3(lx, "eye", &c->eye);
             have_eye = 1;
         } else if (rf_lex_is(&a, "target")) {
             st = rf_lex_vec3(lx, "target", &c->target);
-            c->target_loc = loc_of(&a);
+            c->target_loc = rf__token_loc(&a);
             have_target = 1;
         } else if (rf_lex_is(&a, "up")) {
             st = rf_lex_vec3(lx, "up", &c->up);
-            c->up_loc = loc_of(&a);
+            c->up_loc = rf__token_loc(&a);
             have_up = 1;
         } else if (rf_lex_is(&a, "fov")) {
             if (!(st = rf_lex_number(lx, "fov", &c->fov)))
@@ -201,7 +193,7 @@ static RfStatus read_material(RfReader *r, const RfToken *kw)
                             rf_lex_quote(&name, q, sizeof q));
     memcpy(m.name, name.s, name.len);
     m.name[name.len] = 0;
-    m.loc = loc_of(kw);
+    m.loc = rf__token_loc(kw);
     while (!st && next_attr(lx, &a)) {
         if (rf_lex_is(&a, "ka"))
             st = read_colour(lx, "ka", &m.ka);
@@ -248,7 +240,7 @@ static RfStatus read_light(RfReader *r, const RfToken *kw)
     if (st)
         return st;
     memset(&l, 0, sizeof l);
-    l.loc = loc_of(kw);
+    l.loc = rf__token_loc(kw);
     l.intensity = rf_rgb(1, 1, 1);
     l.falloff = RF_FALLOFF_INVERSE_SQUARE;
     l.samples = 1;
@@ -385,7 +377,7 @@ static RfStatus read_primitive(RfReader *r, const RfToken *kw)
     memset(&p, 0, sizeof p);
     p.material = r->material;
     p.flags = RF_PRIM_TWO_SIDED;
-    p.loc = loc_of(kw);
+    p.loc = rf__token_loc(kw);
     unsigned in_object = r->object >= 0 ? RF_PRIM_IN_OBJECT : 0u;
     if (rf_lex_is(kw, "sphere")) {
         p.type = RF_PRIM_SPHERE;
@@ -481,7 +473,7 @@ static RfStatus read_object(RfReader *r, const RfToken *kw)
                             rf_lex_quote(&name, q, sizeof q));
     memcpy(nm, name.s, name.len);
     nm[name.len] = 0;
-    if (rf_scene_add_object(r->scene, nm, loc_of(kw), &r->object))
+    if (rf_scene_add_object(r->scene, nm, rf__token_loc(kw), &r->object))
         return rf_lex_error(lx, kw->line, kw->col, "out of memory");
     r->object_kw = *kw;
     return no_attrs(lx, kw);
@@ -643,7 +635,7 @@ static RfStatus read_instance(RfReader *r, const RfToken *kw)
     p.type = RF_PRIM_INSTANCE;
     p.flags = RF_PRIM_TWO_SIDED | (r->object >= 0 ? RF_PRIM_IN_OBJECT : 0u);
     p.material = r->material; /* unused: the object's primitives have their own */
-    p.loc = loc_of(kw);
+    p.loc = rf__token_loc(kw);
     st = rf_scene_add_instance(r->scene, -1, m, &p.u.instance);
     if (st == RF_ERR_SINGULAR) {
         free(mo);
