@@ -212,8 +212,7 @@ RfStatus rf_scene_read_mtl(const char *name, const char *text, size_t len, RfSce
             mtl_defaults(&p);
             memcpy(p.name, nm.s, nm.len);
             p.name[nm.len] = 0;
-            p.loc.line = kw.line;
-            p.loc.col = kw.col;
+            p.loc = rf__token_loc(&kw);
             have = 1;
         } else {
             st = read_statement(&lx, &kw, &p, have);

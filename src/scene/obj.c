@@ -189,8 +189,7 @@ static RfStatus read_face(ObjReader *r, const RfToken *kw)
     f.first = r->ncorners;
     f.material = r->material;
     f.group = r->group;
-    f.loc.line = kw->line;
-    f.loc.col = kw->col;
+    f.loc = rf__token_loc(kw);
     while (!eol(&r->lx)) {
         RfToken t = r->lx.tok;
         Corner c;

@@ -55,8 +55,7 @@ RfStatus rf__reader_default_material(RfLexer *lx, RfScene *scene, const RfToken 
     RfMaterial m = rf_material_default();
     snprintf(m.name, sizeof m.name, "default");
     m.kd = rf_rgb(1, 1, 1);
-    m.loc.line = kw->line;
-    m.loc.col = kw->col;
+    m.loc = rf__token_loc(kw);
     if (rf_scene_add_material(scene, &m, current))
         return rf_lex_error(lx, kw->line, kw->col, "out of memory");
     return RF_OK;
