@@ -110,6 +110,28 @@ if [ -s "$B/seeds/open.txt" ]; then
     sed 's/^/  /' "$B/seeds/open.txt"
 fi
 if [ "$status" = 1 ]; then
+    # each finding in full enough to rebuild it elsewhere (CI keeps only the log's tail):
+    # the sanitizer's summary, refray's first frames and the input itself, base64
+    for t in $TARGETS; do
+        log=$B/logs/$t.log
+        for a in $(sed -n 's/.*Test unit written to //p' "$log" | head -n 3); do
+            echo "refray fuzz: $t finding $(basename "$a"):"
+            # the round (from libFuzzer's "INFO: Seed:") that wrote this artifact
+            awk -v a="$a" '/^INFO: Seed:/ {n = 0} {l[++n] = $0}
+                 index($0, "Test unit written to " a) {
+                     k = 0; f = 0
+                     for (i = 1; i <= n; i++) {
+                         if (l[i] ~ /^(SUMMARY|==[0-9]+==ERROR)|runtime error|ERROR: libFuzzer/ && k < 3) { print "  " l[i]; k++ }
+                         if (l[i] ~ /^ *#[0-9]+ .* in rf/ && f < 6) { print "  " l[i]; f++ }
+                     }
+                     exit
+                 }' "$log"
+            if [ -f "$a" ] && [ "$(wc -c < "$a")" -le 4096 ]; then
+                echo "  the input, base64 (base64 -d > FILE):"
+                base64 -w 100 "$a" | sed 's/^/  /'
+            fi
+        done
+    done
     echo "refray fuzz: findings in $B/artifacts/<target>/ (reproduce: $B/fuzz-<target> FILE;" \
          "minimise: $B/fuzz-<target> -minimize_crash=1 -runs=10000 FILE)" >&2
 fi

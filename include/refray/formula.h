@@ -143,8 +143,10 @@ int rf_in_num(RfFormulaCall *call, const char *name, double *v);
 int rf_in_int(RfFormulaCall *call, const char *name, long *v);
 int rf_in_bool(RfFormulaCall *call, const char *name, int *v);
 int rf_in_has(RfFormulaCall *call, const char *name);
-/* A caller's further limit on lengths (sizes): RF_DIM(3) | RF_DIM(4); 0: as the spec says. */
-#define RF_DIM(n) (1u << (n))
+/* A caller's further limit on lengths (sizes): RF_DIM(3) | RF_DIM(4); 0: as the spec says. A
+ * length outside 0..31 (a list of 35 numbers) is in no set: RF_DIM gives 0, not a shift past the
+ * word (undefined behaviour). */
+#define RF_DIM(n) ((n) >= 0 && (n) < 32 ? 1u << (n) : 0u)
 /* A vector of a length the spec's kind allows and, when dims != 0, one of dims (the length of
  * another input, say); at most 4 components; the length goes to *dim_out. An rgb input also
  * takes one number as grey. */

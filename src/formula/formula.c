@@ -580,7 +580,7 @@ int rf_in_vec(RfFormulaCall *call, const char *name, unsigned dims, double *v, i
     if (n < 0)
         return rf_call_bad_input(call, "input '%s' must be a vector of %s finite numbers%s", name,
                                  dims_text(allowed, want, sizeof want), it.grey ? " (or one number: grey)" : "");
-    if (n > 31 || !(allowed & RF_DIM(n)))
+    if (!(allowed & RF_DIM(n)))
         return wrong_length(call, name, &it, allowed, n, "component\0components");
     memcpy(v, buf, sizeof(double) * (size_t)n);
     if (dim_out)
@@ -631,7 +631,7 @@ int rf_in_mat(RfFormulaCall *call, const char *name, unsigned dims, double *m, i
     if (got < 1)
         return rf_call_bad_input(call, "input '%s' must be a square matrix of finite numbers (rows, or a "
                                  "flat row-major list)", name);
-    if (got > 31 || !(allowed & RF_DIM(got))) {
+    if (!(allowed & RF_DIM(got))) {
         char what[64];
         int k = snprintf(what, sizeof what, "row (%dx%d)", got, got);
         snprintf(what + k + 1, sizeof what - (size_t)k - 1, "rows (%dx%d)", got, got);
@@ -693,7 +693,7 @@ int rf_in_vecs(RfFormulaCall *call, const char *name, unsigned dims, int max, do
         int k = json_numbers(e, tmp, 4);
         if (k < 0)
             return rf_call_bad_input(call, "input '%s': vector %d is not a list of finite numbers", name, n + 1);
-        if (k > 31 || !(allowed & RF_DIM(k)) || (d && k != d))
+        if (!(allowed & RF_DIM(k)) || (d && k != d))
             return wrong_length(call, name, &it, d ? RF_DIM(d) : allowed, k, "component in a vector\0components in a vector");
         d = k;
         memcpy(v + n * d, tmp, sizeof(double) * (size_t)d);
