@@ -447,18 +447,45 @@ static void t_depth_and_threshold(void)
         CHECK_PX(&img, 0, 0, 1.75, 1.75, 1.75);
         rf_image_free(&img);
     }
-    static const struct { const char *tau; double e; int secondary; } cases[] = {
-        {"threshold 0", 1.9921875, 7}, {"threshold 0.1", 1.875, 3},
-        {"threshold 0.125", 1.875, 3}, {"threshold 0.126", 1.75, 2},
-        {"threshold 0.5", 1.5, 1},     {"threshold 0.51", 1.0, 0},
+    static const struct { double tau, e; int secondary; } cases[] = {
+        {0, 1.9921875, 7}, {0.1, 1.875, 3}, {0.125, 1.875, 3}, {0.126, 1.75, 2}, {0.5, 1.5, 1}, {0.51, 1.0, 0},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-        snprintf(text, sizeof text, base, cases[k].tau);
-        if (!render_text(text, NULL, &img, &st))
+        /* the scene's threshold; then the same as an option (refray render --threshold) over a
+         * scene without one, and over a scene whose own threshold (0.3) it replaces */
+        for (int way = 0; way < 3; way++) {
+            char tau[64] = "";
+            if (way == 0)
+                snprintf(tau, sizeof tau, "threshold %.17g", cases[k].tau);
+            else if (way == 2)
+                snprintf(tau, sizeof tau, "threshold 0.3");
+            snprintf(text, sizeof text, base, tau);
+            RfRenderOptions o = opts(2, 0);
+            if (way > 0)
+                o.threshold = cases[k].tau;
+            if (!render_text(text, &o, &img, &st))
+                return;
+            CHECK_PX(&img, 0, 1, cases[k].e, cases[k].e, cases[k].e);
+            RF_CHECK_EQ_INT(st.secondary_rays, 4 * cases[k].secondary);
+            rf_image_free(&img);
+        }
+    }
+    /* out of [0, 1] or NaN: refused, as the scene's own (a negative one means the scene's) */
+    static const double bad[] = {-0.5, 1.5, NAN};
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        char err[256];
+        RfScene sc;
+        snprintf(text, sizeof text, base, "");
+        RfRenderOptions o = opts(2, 0);
+        o.threshold = bad[k];
+        if (rf_scene_read_rf("t.rf", text, strlen(text), &sc, err, sizeof err) != RF_OK) {
+            rf_test_fail(__FILE__, __LINE__, "scene text refused: %s", err);
             return;
-        CHECK_PX(&img, 0, 1, cases[k].e, cases[k].e, cases[k].e);
-        RF_CHECK_EQ_INT(st.secondary_rays, 4 * cases[k].secondary);
+        }
+        img.data = NULL;
+        RF_CHECK_EQ_INT(rf_render(&sc, &o, &img, &st), k == 0 ? RF_OK : RF_ERR_DOMAIN);
         rf_image_free(&img);
+        rf_scene_free(&sc);
     }
 }
 

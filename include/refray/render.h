@@ -37,6 +37,9 @@ typedef void (*RfTraceFn)(void *ctx, const RfTraceEvent *e);
 typedef struct {
     int width, height;   /* 0: the scene's */
     int max_depth;       /* 0: the scene's; the primary ray is depth 1 */
+    double threshold;    /* < 0: the scene's (RfRenderSettings.min_contribution); a secondary ray
+                            whose weight falls below it is not traced (POV-Ray's adc_bailout);
+                            NaN or above 1: RF_ERR_DOMAIN */
     int samples;         /* per pixel, 0: the scene's. 1: the pixel centre; more: placed by the
                             sampler, weighted by the filter */
     int sampler;         /* RfSampler, -1: the scene's (default stratified) */

@@ -74,6 +74,9 @@ const RfOpt rf_opts_render[] = {
     {"height", RF_ARG_HEIGHT, "H", "image height in pixels (default: the scene's)", "an integer in [1, 65536]"},
     {"samples", RF_ARG_SAMPLES, "N", "samples per pixel (1: the pixel centre)", "an integer in [1, 1048576]"},
     {"depth", RF_ARG_DEPTH, "D", "the deepest ray tree (default: the scene's)", "an integer in [1, 1000]"},
+    {"threshold", RF_ARG_THRESHOLD, "T",
+     "leave out a secondary ray whose weight falls below T (default: the scene's, 0 in NFF; POV-Ray's "
+     "adc_bailout is 1/255 = 0.0039215686)", "a number in [0, 1]"},
     {"threads", RF_ARG_THREADS, "N", "worker threads (default: one per processor)", "an integer in [1, 1024]"},
     {"seed", RF_ARG_SEED, "S", "seed of the random samplers (default 0)", "an integer in [0, 2147483647]"},
     {"sampler", RF_ARG_SAMPLER, "NAME", "uniform, random, stratified, sobol or adaptive (default: the scene's)",
@@ -127,6 +130,9 @@ int rf_arg_render(int key, const char *v, RfRenderOptions *opt)
         break;
     case RF_ARG_DEPTH:
         ok = rf_arg_int(v, 1, 1000, &opt->max_depth);
+        break;
+    case RF_ARG_THRESHOLD:
+        ok = rf_arg_nonneg(v, &opt->threshold) && opt->threshold <= 1.0;
         break;
     case RF_ARG_THREADS:
         ok = rf_arg_int(v, 1, 1024, &opt->threads);

@@ -19,6 +19,7 @@ RfRenderOptions rf_render_options_default(void)
     o.adaptive = -1;
     o.adaptive_threshold = -1.0;
     o.adaptive_depth = -1;
+    o.threshold = -1.0;
     o.filter = -1;
     o.aperture = NAN;
     o.focus = NAN;
@@ -35,6 +36,7 @@ static const char *const part_names[RF_K_COUNT] = {"shadow", "secondary", "fresn
 /* The scene's settings with the options' overrides. */
 typedef struct {
     int samples, max_depth;
+    double threshold;
     RfSampler sampler;
     int adaptive, adaptive_depth;
     double adaptive_threshold;
@@ -48,6 +50,7 @@ static int resolve(const RfScene *scene, const RfRenderOptions *opt, Resolved *r
     const RfRenderSettings *rs = &scene->render;
     r->samples = opt->samples > 0 ? opt->samples : (rs->samples > 0 ? rs->samples : 1);
     r->max_depth = opt->max_depth > 0 ? opt->max_depth : rs->max_depth;
+    r->threshold = opt->threshold < 0.0 ? rs->min_contribution : opt->threshold; /* NaN stays, and is refused */
     r->sampler = opt->sampler >= 0 ? (RfSampler)opt->sampler : rs->sampler;
     r->adaptive = opt->adaptive >= 0 ? opt->adaptive : rs->adaptive;
     r->adaptive_threshold = opt->adaptive_threshold >= 0.0 ? opt->adaptive_threshold : rs->adaptive_threshold;
@@ -60,7 +63,7 @@ static int resolve(const RfScene *scene, const RfRenderOptions *opt, Resolved *r
     r->aperture = isnan(opt->aperture) ? scene->camera.aperture : opt->aperture;
     r->focus = isnan(opt->focus) ? scene->camera.focus : opt->focus;
     r->shadows = opt->shadows >= 0 ? (RfShadowMode)opt->shadows : rs->shadows;
-    return (r->shadows == RF_SHADOWS_OPAQUE || r->shadows == RF_SHADOWS_FILTERED) && r->max_depth > 0 && (unsigned)r->sampler < RF_SAMPLER_COUNT && (unsigned)r->filter.kind < RF_FILTER_COUNT &&
+    return (r->shadows == RF_SHADOWS_OPAQUE || r->shadows == RF_SHADOWS_FILTERED) && r->max_depth > 0 && r->threshold >= 0.0 && r->threshold <= 1.0 && (unsigned)r->sampler < RF_SAMPLER_COUNT && (unsigned)r->filter.kind < RF_FILTER_COUNT &&
            r->filter.radius > 0.0 && r->adaptive_depth <= 8 && r->aperture >= 0.0 && isfinite(r->aperture) &&
            (r->aperture == 0.0 || (r->focus > 0.0 && isfinite(r->focus)));
 }
@@ -189,6 +192,8 @@ int rf_render_describe(const RfScene *scene, const RfRenderOptions *opt, char *b
         n += (size_t)snprintf(buf + n, size - n, ", lens aperture %.17g focus %.17g", r.aperture, r.focus);
     if (opt->light_samples > 0 && n < size)
         n += (size_t)snprintf(buf + n, size - n, ", light samples %d", opt->light_samples);
+    if (r.threshold != scene->render.min_contribution && n < size) /* the scene's is in its hash */
+        n += (size_t)snprintf(buf + n, size - n, ", threshold %.17g", r.threshold);
     if (opt->two_sided && n < size)
         n += (size_t)snprintf(buf + n, size - n, ", two-sided");
     if (r.shadows == RF_SHADOWS_FILTERED && n < size)
@@ -321,7 +326,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     job->filtered_shadows = res.shadows == RF_SHADOWS_FILTERED && (rf_scene_features(scene) & RF_FEAT_TRANSMISSION);
     job->fixed_offset = opt->fixed_offset;
     job->seed = opt->seed;
-    job->min_contribution = scene->render.min_contribution;
+    job->min_contribution = res.threshold;
     job->background = scene->render.background;
     job->ambient = scene->render.ambient;
     job->materials = scene->materials;
