@@ -219,12 +219,12 @@ void rf__export_pov(RfExCtx *c)
                      "// lights: no falloff as they are; inverse-square by POV-Ray's fade: colour I / (2 fd^2) with\n"
                      "//   fade_distance fd = %s fade_power 2 gives I / (d^2 + fd^2); spot: radius = falloff = cutoff,\n"
                      "//   tightness = exponent (cos^n inside the cone, 0 outside); directional: parallel\n"
-                     "// linear light (assumed_gamma 1; write EXR: +FE), adc_bailout 0 (POV-Ray's default 1/255 cuts\n"
-                     "//   rays refray traces), max_trace_level = refray's depth\n",
+                     "// linear light (assumed_gamma 1; write EXR: +FE), adc_bailout = refray's threshold (0 unless the\n"
+                     "//   scene sets one: POV-Ray's default 1/255 cuts rays refray traces), max_trace_level = refray's depth\n",
                   rf__ex_num(c, fade));
     rf__ex_printf(c, "// resolution %d %d\n#version 3.7;\n", c->width, c->height);
-    rf__ex_printf(c, "global_settings { assumed_gamma 1.0 max_trace_level %d adc_bailout 0 ambient_light 0 }\n",
-                  c->depth);
+    rf__ex_printf(c, "global_settings { assumed_gamma 1.0 max_trace_level %d adc_bailout %s ambient_light 0 }\n",
+                  c->depth, rf__ex_num(c, s->render.min_contribution));
     rf__ex_printf(c, "background { rgb <%s> }\n", rf__ex_rgb(c, s->render.background, ", "));
     RfWindow w = c->win;
     RfVec3 dir = rf_vec3_add(rf_vec3_scale(c->w, -w.d),
