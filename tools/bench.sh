@@ -8,7 +8,8 @@
 #  3. POV-Ray 3.7 on the same whitted scene, and the image difference.
 #  4. refray against POV-Ray 3.7: whitted at 1 and 16 spp and every SPD scene (the SPD's own
 #     POV-Ray translations in scenes/spd/pov/, depth 5, 1 spp), trace times, 1 and 2 threads;
-#     POV-Ray as it comes and without its ray cut-off (adc_bailout 0), as refray traces these scenes.
+#     POV-Ray as it comes and without its ray cut-off (adc_bailout 0), as refray traces these scenes,
+#     and refray with POV-Ray's cut-off (--threshold 1/255) against POV-Ray as it comes.
 #  5. the specialised render kernels: each one's speed-up over the general kernel on scenes that
 #     do not need what it leaves out.
 #  6. run time against error on `soft` (docs/bench-scenes.md section 3): `refray bench` for every sampling
