@@ -138,19 +138,6 @@ static void t_export_pov_numbers(void)
     const char *x = ex.files[0].text;
     RF_CHECK(strstr(x, "// resolution 160 120\n") != NULL);
     RF_CHECK(strstr(x, "max_trace_level 3 adc_bailout 0 ") != NULL);
-    rf_export_free(&ex);
-    /* the scene's threshold is POV-Ray's adc_bailout (the same rule: a ray whose weight falls
-     * below it is left out) */
-    char with[4096];
-    snprintf(with, sizeof with, "threshold 0.004\n%s", SCENE);
-    if (export_text(with, RF_EXPORT_POV, 0, &ex, &st)) {
-        RF_CHECK(st == RF_OK && ex.file_count == 1 &&
-                 strstr(ex.files[0].text, "max_trace_level 3 adc_bailout 0.004 ") != NULL);
-        rf_export_free(&ex);
-    }
-    if (!export_text(SCENE, RF_EXPORT_POV, 0, &ex, &st))
-        return;
-    x = ex.files[0].text;
     /* eye (0,0,5) looking at the origin, up y: u = up x w = x, v = y; the window of fov 40 at
      * d = 1: t = tan(20 deg), r = t 160/120. direction -z, right 2r x, up 2t y */
     double t = tan(20.0 * PI / 180.0);
@@ -182,6 +169,16 @@ static void t_export_pov_numbers(void)
         discs++;
     RF_CHECK_EQ_INT(discs, 2);
     rf_export_free(&ex);
+
+    /* the scene's threshold is POV-Ray's adc_bailout (the same rule: a ray whose weight falls
+     * below it is left out) */
+    char with[4096];
+    snprintf(with, sizeof with, "threshold 0.004\n%s", SCENE);
+    if (export_text(with, RF_EXPORT_POV, 0, &ex, &st)) {
+        RF_CHECK(st == RF_OK && ex.file_count == 1 &&
+                 strstr(ex.files[0].text, "max_trace_level 3 adc_bailout 0.004 ") != NULL);
+        rf_export_free(&ex);
+    }
 
     /* NFF's angle between the outermost pixel centres: half-height tan(A/2) H / (H - 1) */
     const char *nff = "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 40\nhither 0\nresolution 160 120\n"

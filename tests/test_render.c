@@ -77,17 +77,25 @@ static RfRenderOptions opts(int threads, int depth)
 }
 
 /* Reads refray-format text and renders it (o may be NULL: 2 threads, the scene's settings). */
-static int render_text(const char *text, const RfRenderOptions *o, RfImage *img, RfRenderStats *st)
+/* Reads a .rf scene text; a refusal fails the test. Returns 1 with *s. */
+static int parse_text(const char *text, RfScene *s)
 {
     char err[512];
+    if (rf_scene_read_rf("t.rf", text, strlen(text), s, err, sizeof err) != RF_OK) {
+        rf_test_fail(__FILE__, __LINE__, "scene text refused: %s", err);
+        return 0;
+    }
+    return 1;
+}
+
+static int render_text(const char *text, const RfRenderOptions *o, RfImage *img, RfRenderStats *st)
+{
     RfScene s;
     RfRenderStats dummy;
     RfRenderOptions opt = o ? *o : opts(2, 0);
     img->data = NULL;
-    if (rf_scene_read_rf("t.rf", text, strlen(text), &s, err, sizeof err) != RF_OK) {
-        rf_test_fail(__FILE__, __LINE__, "scene text refused: %s", err);
+    if (!parse_text(text, &s))
         return 0;
-    }
     RfStatus r = rf_render(&s, &opt, img, st ? st : &dummy);
     rf_scene_free(&s);
     if (r != RF_OK) {
@@ -473,15 +481,12 @@ static void t_depth_and_threshold(void)
     /* out of [0, 1] or NaN: refused, as the scene's own (a negative one means the scene's) */
     static const double bad[] = {-0.5, 1.5, NAN};
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
-        char err[256];
         RfScene sc;
         snprintf(text, sizeof text, base, "");
         RfRenderOptions o = opts(2, 0);
         o.threshold = bad[k];
-        if (rf_scene_read_rf("t.rf", text, strlen(text), &sc, err, sizeof err) != RF_OK) {
-            rf_test_fail(__FILE__, __LINE__, "scene text refused: %s", err);
+        if (!parse_text(text, &sc))
             return;
-        }
         img.data = NULL;
         RF_CHECK_EQ_INT(rf_render(&sc, &o, &img, &st), k == 0 ? RF_OK : RF_ERR_DOMAIN);
         rf_image_free(&img);
