@@ -466,6 +466,12 @@ RfStatus rf_raster_render(const RfScene *s, const RfRasterOptions *opt,
         snprintf(err, errsz, st == RF_ERR_NOMEM ? "out of memory" : "bad instance in the scene graph");
         return st;
     }
+    if (opt->two_sided) { /* the shaders' flags word: seen from both sides, the scene's sides aside */
+        for (size_t i = 0; i < g.ntri; i++)
+            g.trii[4 * i + 1] = RF_PRIM_TWO_SIDED;
+        for (size_t i = 0; i < g.nquad; i++)
+            g.quai[4 * i + 1] = RF_PRIM_TWO_SIDED;
+    }
     if ((st = rf_image_alloc(color, vw.width, vw.height, 3)) != RF_OK ||
         (depth && (st = rf_image_alloc(depth, vw.width, vw.height, 1)) != RF_OK)) {
         free_geometry(&g);

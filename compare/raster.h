@@ -21,6 +21,8 @@ typedef enum {
 typedef struct {
     int width, height; /* 0: the scene's */
     RfShadeMode mode;
+    int two_sided;     /* 1: every surface seen from both sides, its one-sided and inside-only flags
+                          aside (the tracer's RfRenderOptions.two_sided, `--two-sided`) */
 } RfRasterOptions;
 
 /* Draws the scene with the current GL context, whose entry points come from proc(proc_ctx,

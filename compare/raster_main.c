@@ -11,7 +11,7 @@
 #include "refray/scene_io.h"
 #include "refray/version.h"
 
-enum { OPT_DEPTH_OUT = RF_OPT_ID, OPT_PNG, OPT_MODE, OPT_WIDTH, OPT_HEIGHT, OPT_GL };
+enum { OPT_DEPTH_OUT = RF_OPT_ID, OPT_PNG, OPT_MODE, OPT_WIDTH, OPT_HEIGHT, OPT_GL, OPT_TWO_SIDED };
 
 static const RfOpt raster_opts[] = {
     {"output", 'o', "FILE", "the image: .exr linear RGB (32-bit float) or .png (display-encoded)", NULL},
@@ -24,6 +24,7 @@ static const RfOpt raster_opts[] = {
     {"height", OPT_HEIGHT, "H", "image height (default: the scene's)", "an integer in [1, 65536]"},
     {"gl", OPT_GL, "auto|osmesa|egl", "the headless GL (default auto: osmesa, else egl); the same image",
      "auto, osmesa or egl"},
+    {"two-sided", OPT_TWO_SIDED, NULL, "every surface visible from both sides (as refray render --two-sided)", NULL},
     RF_OPT_TABLE_END,
 };
 
@@ -45,7 +46,7 @@ static const RfCommand raster_cmd = {
 int main(int argc, char **argv)
 {
     const char *scene_path = NULL, *exr = NULL, *depth_out = NULL, *png = NULL;
-    RfRasterOptions opt = {0, 0, RF_SHADE_PHONG};
+    RfRasterOptions opt = {0, 0, RF_SHADE_PHONG, 0};
     RfLoadOptions lopt = rf_load_options_default();
     RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
     int gl = RF_GL_AUTO;
@@ -67,6 +68,7 @@ int main(int argc, char **argv)
             opt.mode = v[0] == 'g' ? RF_SHADE_GOURAUD : v[0] == 'f' ? RF_SHADE_FLAT : RF_SHADE_PHONG;
             break;
         case OPT_GL: ok = (gl = rf_gl_backend_parse(v)) >= 0; break;
+        case OPT_TWO_SIDED: opt.two_sided = 1; break;
         default: ok = rf_arg_shared(key, v, &lopt, &popt) > 0;
         }
         if (!ok)

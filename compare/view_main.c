@@ -44,8 +44,8 @@ static const char *const keys_help =
     "(and on stderr) and the last good scene stays.\n";
 
 enum {
-    OPT_WIDTH = RF_OPT_ID, OPT_HEIGHT, OPT_SAMPLES, OPT_DEPTH, OPT_THREADS, OPT_LOCAL, OPT_SHOW, OPT_SCREENSHOT,
-    OPT_SAVE, OPT_TIMEOUT
+    OPT_WIDTH = RF_OPT_ID, OPT_HEIGHT, OPT_SAMPLES, OPT_DEPTH, OPT_THREADS, OPT_LOCAL, OPT_TWO_SIDED, OPT_SHOW,
+    OPT_SCREENSHOT, OPT_SAVE, OPT_TIMEOUT
 };
 
 static const RfOpt view_opts[] = {
@@ -56,6 +56,7 @@ static const RfOpt view_opts[] = {
     {"depth", OPT_DEPTH, "D", "the deepest ray tree (default: the scene's)", "an integer in [1, 64]"},
     {"threads", OPT_THREADS, "N", "worker threads (default: one per processor)", "an integer in [1, 1024]"},
     {"local", OPT_LOCAL, NULL, "primary rays and local Phong only, as refray render --local", NULL},
+    {"two-sided", OPT_TWO_SIDED, NULL, "every surface seen from both sides, tracer and raster alike", NULL},
     {"show", OPT_SHOW, "tracer|raster|diff", "the view to start with (keys T, G, D)", "tracer, raster or diff"},
     {"screenshot", OPT_SCREENSHOT, "OUT.png", "once converged, save the window's pixels (8-bit) and exit", NULL},
     {"save", OPT_SAVE, "OUT.exr", "with --screenshot: the linear image shown too (.exr, or .png encoded)", NULL},
@@ -131,7 +132,7 @@ typedef struct {
     /* the settings of the next render */
     RfScene *next_scene; /* a freshly loaded scene for the worker (owned here until taken) */
     RfSceneCamera cam;
-    int local, depth, samples, threads, width, height;
+    int local, two_sided, depth, samples, threads, width, height;
     /* status */
     int pass_samples;
     double seconds, mrays;
@@ -180,7 +181,8 @@ static void *worker(void *arg)
             sh->next_scene = NULL;
         }
         scene->camera = sh->cam;
-        int local = sh->local, depth = sh->depth, samples = sh->samples, threads = sh->threads;
+        int local = sh->local, two_sided = sh->two_sided, depth = sh->depth, samples = sh->samples,
+            threads = sh->threads;
         __atomic_store_n(&sh->cancel, 0, __ATOMIC_RELAXED);
         pthread_mutex_unlock(&sh->lock);
         int finished = 1;
@@ -191,6 +193,7 @@ static void *worker(void *arg)
             RfRenderStats st;
             RfImage img;
             o.width = sh->width, o.height = sh->height, o.threads = threads, o.local_only = local;
+            o.two_sided = two_sided;
             o.max_depth = depth, o.samples = pass == 0 ? 1 : samples, o.preview = 1;
             o.tile_done = on_tile, o.tile_done_ctx = sh, o.cancel = &sh->cancel;
             double t0 = now_s();
@@ -500,7 +503,7 @@ static void make_diff(View *v, const RfImage *tr)
 int main(int argc, char **argv)
 {
     const char *scene_path = NULL, *screenshot = NULL, *save = NULL;
-    int width = 0, height = 0, samples = 0, depth = 0, threads = 0, local = 0, show = 0;
+    int width = 0, height = 0, samples = 0, depth = 0, threads = 0, local = 0, two_sided = 0, show = 0;
     double timeout = 60.0;
     RfLoadOptions lopt = rf_load_options_default();
     RfPngOptions popt = {RF_PNG_GAMMA, 2.2, 8, NULL};
@@ -524,6 +527,7 @@ int main(int argc, char **argv)
         case OPT_DEPTH: ok = rf_arg_int(val, 1, 64, &depth); break;
         case OPT_THREADS: ok = rf_arg_int(val, 1, 1024, &threads); break;
         case OPT_LOCAL: local = 1; break;
+        case OPT_TWO_SIDED: two_sided = 1; break;
         case OPT_SHOW:
             show = strcmp(val, "tracer") == 0 ? 0 : strcmp(val, "raster") == 0 ? 1 : strcmp(val, "diff") == 0 ? 2 : -1;
             ok = show >= 0;
@@ -576,6 +580,7 @@ int main(int argc, char **argv)
     sh.depth = depth > 0 ? depth : v.scene.render.max_depth;
     sh.threads = threads;
     sh.local = local;
+    sh.two_sided = two_sided;
     sh.cam = v.scene.camera;
     sh.next_scene = load_copy(&v, err, sizeof err);
     if (!sh.next_scene || rf_image_alloc(&sh.shown, sh.width, sh.height, 3) != RF_OK ||
@@ -657,7 +662,7 @@ int main(int argc, char **argv)
                  sh.kernel, v.inspected[0] ? " | pixel " : "", v.inspected, v.error[0] ? " | ERROR: " : "", v.error);
         pthread_mutex_unlock(&sh.lock);
         if (v.mode != 0 && v.raster_stale) {
-            RfRasterOptions ro = {sh.width, sh.height, RF_SHADE_PHONG};
+            RfRasterOptions ro = {sh.width, sh.height, RF_SHADE_PHONG, sh.two_sided};
             rf_image_free(&v.raster);
             if (rf_raster_render(&v.scene, &ro, glfw_proc, NULL, &v.raster, NULL, err, sizeof err) != RF_OK) {
                 fprintf(stderr, "refray-view: raster: %s\n", err);
