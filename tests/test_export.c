@@ -221,6 +221,22 @@ static void t_export_pbrt_numbers(void)
     }
     RF_CHECK(ex.notes && strstr(ex.notes, "t.rf:9:1: material 'mir': mirror kr"));
     rf_export_free(&ex);
+    /* a material's note once, not once per shape (a mesh has thousands) */
+    if (!export_text("camera eye 0 0 5  target 0 0 0  up 0 1 0  fov 40\nlight point 0 3 3\n"
+                     "material p  kd 0.5  ks 0.5  shininess 20\ntriangle 0 0 0  1 0 0  0 1 0\n"
+                     "triangle 0 0 1  1 0 1  0 1 1\ntriangle 0 0 2  1 0 2  0 1 2\n",
+                     RF_EXPORT_PBRT, 1, &ex, &st))
+        return;
+    int notes = 0;
+    for (const char *n = ex.notes; n && (n = strstr(n, "material 'p': Phong highlight")) != NULL; n++)
+        notes++;
+    RF_CHECK_EQ_INT(notes, 1);
+    int shapes = 0;
+    for (const char *t = ex.file_count == 1 ? ex.files[0].text : NULL; t && (t = strstr(t, "Material \"diffuse\"")) != NULL; t++)
+        shapes++;
+    RF_CHECK(st == RF_OK);
+    RF_CHECK_EQ_INT(shapes, 3); /* each shape still has its material */
+    rf_export_free(&ex);
 }
 
 /* What the target cannot represent refuses the export, naming the object and its line. */
@@ -243,6 +259,8 @@ static void t_export_refusals(void)
         {RF_EXPORT_POV, "material g  kr 0.5  kt 1  ior 1.5  fresnel\nsphere 0 0 0 1\n",
          "t.rf:3:1: material 'g': Fresnel glass with kr"},
         {RF_EXPORT_PBRT, "material e  kd 1  emission 2\nsphere 0 0 0 1\n", "t.rf:3:1: material 'e': emission"},
+        {RF_EXPORT_MITSUBA, "material w kd 1\nobject b\nsphere 0 0 0 1\nend\ninstance b scale 1 2 1\n",
+         "t.rf:5:1: sphere under a non-similarity transform: Mitsuba's sphere takes no non-uniform scale"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char text[512];
@@ -267,6 +285,84 @@ static void t_export_refusals(void)
         rf_test_checks++;
         rf_export_free(&ex);
     }
+}
+
+/* Quadrics under non-similarity transforms (scenes/crosscheck/placed.rf's kind): POV-Ray and pbrt
+ * get the quadric in its object's space with the placement's matrix, by hand: the instance's
+ * `scale 1 2 1 translate 0 1 0` and the `matrix` rows (1 0.5 0 1.6 / 0 1.6 0 0 / 0 0 1 -0.4) as
+ * POV-Ray's rows (the matrix's columns) and pbrt's column-major ConcatTransform. Mitsuba with
+ * --lossy gets a mesh whose every vertex lies on the ellipsoid x^2 + ((y - 1)/2)^2 + z^2 = 1 with
+ * the normal (x, (y - 1)/4, z) there, and whose every triangle winds around that normal. */
+static const char *PLACED =
+    "camera eye 0 1 6  target 0 1 0  up 0 1 0  fov 40\n"
+    "light point 2 4 4  intensity 10\n"
+    "material w kd 0.5\n"
+    "object b\nsphere 0 0 0 1\nend\n"
+    "instance b scale 1 2 1  translate 0 1 0\n"
+    "object c\ncylinder 0 0 0  0 1 0  0.4\nend\n"
+    "instance c matrix 1 0.5 0 1.6  0 1.6 0 0  0 0 1 -0.4\n";
+
+static void t_export_placed_quadrics(void)
+{
+    RfExport ex;
+    RfStatus st;
+    if (!export_text(PLACED, RF_EXPORT_POV, 0, &ex, &st))
+        return;
+    RF_CHECK(st == RF_OK && ex.file_count == 1);
+    if (ex.file_count == 1) {
+        RF_CHECK(strstr(ex.files[0].text, "sphere { <0, 0, 0>, 1\n  matrix <1, 0, 0,  0, 2, 0,  0, 0, 1,  0, 1, 0>\n"));
+        RF_CHECK(strstr(ex.files[0].text, "cone { <0, 0, 0>, 0.4, <0, 1, 0>, 0.4 open\n"
+                                          "  matrix <1, 0, 0,  0.5, 1.6, 0,  0, 0, 1,  1.6, 0, -0.4>\n"));
+    }
+    rf_export_free(&ex);
+    if (!export_text(PLACED, RF_EXPORT_PBRT, 0, &ex, &st))
+        return;
+    RF_CHECK(st == RF_OK && ex.file_count == 1);
+    if (ex.file_count == 1) {
+        RF_CHECK(strstr(ex.files[0].text, "  ConcatTransform [ 1 0 0 0  0 2 0 0  0 0 1 0  0 1 0 1 ]\n"
+                                          "  Translate 0 0 0\n  Shape \"sphere\" \"float radius\" [ 1 ]\n"));
+        RF_CHECK(strstr(ex.files[0].text, "  ConcatTransform [ 1 0 0 0  0.5 1.6 0 0  0 0 1 0  1.6 0 -0.4 1 ]\n"
+                                          "  ConcatTransform [ "));
+    }
+    rf_export_free(&ex);
+    /* Mitsuba: refused without --lossy (the earlier case of t_export_refusals), a mesh with it */
+    if (!export_text(PLACED, RF_EXPORT_MITSUBA, 1, &ex, &st))
+        return;
+    RF_CHECK(st == RF_OK && ex.file_count == 3);
+    if (ex.file_count == 3) {
+        RF_CHECK(strstr(ex.files[0].text, "value=\"out-placed0.obj\"") && strstr(ex.files[0].text, "value=\"out-placed1.obj\""));
+        RF_CHECK(strcmp(ex.files[1].path, "/tmp/out-placed0.obj") == 0);
+        static RfVec3 v[97 * 49], vn[97 * 49];
+        int nv = 0, nn = 0, faces = 0, bad_winding = 0;
+        double worst_v = 0.0, worst_n = 0.0;
+        for (const char *l = ex.files[1].text; l && *l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : NULL) {
+            double a, b, c;
+            int i[3];
+            if (sscanf(l, "v %lf %lf %lf", &a, &b, &c) == 3 && nv < 97 * 49) {
+                v[nv++] = rf_vec3(a, b, c);
+                worst_v = fmax(worst_v, fabs(a * a + (b - 1) * (b - 1) / 4 + c * c - 1));
+            } else if (sscanf(l, "vn %lf %lf %lf", &a, &b, &c) == 3 && nn < nv) {
+                RfVec3 want = rf_vec3_normalize(rf_vec3(v[nn].x, (v[nn].y - 1) / 4, v[nn].z));
+                vn[nn++] = rf_vec3(a, b, c);
+                worst_n = fmax(worst_n, rf_vec3_length(rf_vec3_sub(rf_vec3(a, b, c), want)));
+            } else if (sscanf(l, "f %d//%*d %d//%*d %d//%*d", &i[0], &i[1], &i[2]) == 3) {
+                faces++;
+                if (i[0] < 1 || i[1] < 1 || i[2] < 1 || i[0] > nv || i[1] > nv || i[2] > nv) {
+                    bad_winding++;
+                    continue;
+                }
+                RfVec3 a0 = v[i[0] - 1], g = rf_vec3_cross(rf_vec3_sub(v[i[1] - 1], a0), rf_vec3_sub(v[i[2] - 1], a0));
+                bad_winding += !(rf_vec3_dot(g, rf_vec3_add(vn[i[0] - 1], rf_vec3_add(vn[i[1] - 1], vn[i[2] - 1]))) > 0.0);
+            }
+        }
+        RF_CHECK_EQ_INT(nv, 97 * 49);
+        RF_CHECK_EQ_INT(nn, 97 * 49);
+        RF_CHECK_EQ_INT(faces, 96 * 48 * 2 - 2 * 96); /* the poles' degenerate triangles left out */
+        RF_CHECK_EQ_INT(bad_winding, 0);
+        RF_CHECK(worst_v < 1e-14);
+        RF_CHECK(worst_n < 1e-14);
+    }
+    rf_export_free(&ex);
 }
 
 /* The command: files written together, nothing on refusal, exit codes. */
@@ -355,6 +451,7 @@ const RfTest rf_tests_export[] = {
     {"export_pov_numbers", t_export_pov_numbers},
     {"export_pbrt_numbers", t_export_pbrt_numbers},
     {"export_refusals", t_export_refusals},
+    {"export_placed_quadrics", t_export_placed_quadrics},
     {"export_cli", t_export_cli},
     {"export_mitsuba_crosscheck", t_export_mitsuba_crosscheck},
     RF_TEST_END,

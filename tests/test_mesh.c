@@ -429,7 +429,7 @@ static void test_instanced_vs_flattened(void)
         remove_files(dir, files);
         return;
     }
-    RF_CHECK_EQ_INT(rf_scene_flatten(&s, &flat, err, sizeof err), RF_OK);
+    RF_CHECK_EQ_INT(rf_scene_flatten(&s, 0, &flat, err, sizeof err), RF_OK);
     RF_CHECK_EQ_INT(flat.instance_count, 0);
     RfTriangleCount a = rf_scene_triangle_count(&s), b = rf_scene_triangle_count(&flat);
     RF_CHECK_EQ_INT(a.rendered, 8 * 5);
@@ -460,11 +460,29 @@ static void test_instanced_vs_flattened(void)
     rf_scene_free(&flat);
 
     /* a non-uniformly scaled sphere has no flat form */
-    const char *ell = "camera eye 0 0 5 target 0 0 0 up 0 1 0 fov 40\n"
-                      "object b\nsphere 0 0 0 1\nend\ninstance b scale 1 2 1\n";
+    const char *ell = "camera eye 0 0 5 target 0 0 0 up 0 1 0 fov 40\nresolution 48 36\n"
+                      "light point 2 3 4  intensity 20\nmaterial m kd 0.6 0.3 0.2  ks 0.5  shininess 30\n"
+                      "object b\nsphere 0 0 0 1\nend\ninstance b scale 1 2 1  rotate z 30  translate 0.2 0 0\n";
     RfScene e;
     RF_CHECK_EQ_INT(read_rf(ell, &e, err, sizeof err), RF_OK);
-    RF_CHECK_EQ_INT(rf_scene_flatten(&e, &flat, err, sizeof err), RF_ERR_DOMAIN);
+    RF_CHECK_EQ_INT(rf_scene_flatten(&e, 0, &flat, err, sizeof err), RF_ERR_DOMAIN);
+    /* ... but it stays placed for the exporters (RF_FLATTEN_PLACED_QUADRICS): one object holding the
+     * sphere, one instance with the same matrix, and the same image bit for bit */
+    RF_CHECK_EQ_INT(rf_scene_flatten(&e, RF_FLATTEN_PLACED_QUADRICS, &flat, err, sizeof err), RF_OK);
+    RF_CHECK_EQ_INT(flat.object_count, 1);
+    RF_CHECK_EQ_INT(flat.instance_count, 1);
+    RF_CHECK_EQ_INT(flat.prim_count, 2);
+    if (flat.instance_count == 1 && e.instance_count == 1) {
+        RF_CHECK(memcmp(&flat.instances[0].to_world, &e.instances[0].to_world, sizeof(RfMat4)) == 0);
+        RF_CHECK_EQ_INT(rf_render(&e, &opt, &ia, &sa), RF_OK);
+        RF_CHECK_EQ_INT(rf_render(&flat, &opt, &ib, &sb), RF_OK);
+        RF_CHECK(ia.width == ib.width && ia.height == ib.height &&
+                 memcmp(ia.data, ib.data, sizeof(float) * 3 * (size_t)ia.width * (size_t)ia.height) == 0);
+        RF_CHECK(ia.data[3 * ((size_t)ia.width * (size_t)(ia.height / 2) + (size_t)(ia.width / 2))] > 0.05f); /* lit */
+        rf_image_free(&ia);
+        rf_image_free(&ib);
+    }
+    rf_scene_free(&flat);
     rf_scene_free(&e);
     rf_scene_free(&s);
     remove_files(dir, files);

@@ -48,6 +48,9 @@ static void t_povray_full_renders(void)
         {"crosscheck-diffuse", "scenes/crosscheck/diffuse.rf", "$RF export --quiet --pov \"$d/scene.pov\" scenes/crosscheck/diffuse.rf", 160, 120, 6e-4, 1.5e-4, 0.0},
         /* the same with the spot's cos^6 falloff (POV-Ray's tightness; 0.063 of mean change) */
         {"spot-exponent", "\"$d/scene.rf\"", "sed 's/cutoff 35  intensity 30/cutoff 35  exponent 6  intensity 30/' scenes/crosscheck/diffuse.rf > \"$d/scene.rf\" && grep -q 'exponent 6' \"$d/scene.rf\" && $RF export --quiet --pov \"$d/scene.pov\" \"$d/scene.rf\"", 160, 120, 6e-4, 1.5e-4, 0.0},
+        /* an ellipsoid and a sheared cylinder: the quadric with its placement's matrix (§4.9's
+         * normals, checked by POV-Ray's own transform) */
+        {"crosscheck-placed", "scenes/crosscheck/placed.rf", "$RF export --quiet --pov \"$d/scene.pov\" scenes/crosscheck/placed.rf", 160, 120, 6e-4, 1.5e-4, 0.0},
         /* Fresnel glass with opaque shadows (the exporter's shadow discs) */
         {"crosscheck-glass", "scenes/crosscheck/glass.rf", "$RF export --quiet --pov \"$d/scene.pov\" scenes/crosscheck/glass.rf", 160, 120, 6e-4, 1.5e-4, 0.0},
     };

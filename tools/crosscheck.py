@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """crosscheck.py -- `make crosscheck`: refray's full ray-traced images against two independent
 renderers, Mitsuba 3 (scalar_rgb, path tracer) and POV-Ray 3.7 (Whitted tracer), on the scenes of
-scenes/crosscheck/ (diffuse, mirror, glass), exported by `refray export` (docs/crosscheck.md).
+scenes/crosscheck/ (diffuse, mirror, glass, placed), exported by `refray export` (docs/crosscheck.md).
 
 Mitsuba is a Monte-Carlo renderer, so its image is compared statistically:
   - Mitsuba renders N independent 1-sample passes (seeds 0 .. N-1, the `independent` sampler,

@@ -326,8 +326,14 @@ int rf_scene_object_bounds(const RfScene *scene, int object, RfVec3 *lo, RfVec3 
  * smooth shading under a non-uniform scale: the flat copy normalises the transformed vertex
  * normals before the interpolation, the tracer interpolates in object space and transforms
  * after. RF_ERR_DOMAIN (msg says why) for a sphere or cone under a non-similarity transform,
- * which has no primitive of its own. */
-RfStatus rf_scene_flatten(const RfScene *scene, RfScene *out, char *msg, size_t msgsz);
+ * which has no primitive of its own (unless flags say RF_FLATTEN_PLACED_QUADRICS). */
+RfStatus rf_scene_flatten(const RfScene *scene, unsigned flags, RfScene *out, char *msg, size_t msgsz);
+/* rf_scene_flatten's flags. RF_FLATTEN_PLACED_QUADRICS: a sphere or cone under a non-similarity
+ * transform (an ellipsoid, a sheared cone) stays in out as the one primitive of an object of its
+ * own, placed by one instance with the composed matrix (the world's instances are then these
+ * alone): for writers whose targets transform a quadric (POV-Ray's matrix, pbrt's
+ * ConcatTransform) instead of an error. */
+enum { RF_FLATTEN_PLACED_QUADRICS = 1u };
 
 /* The checks of the model, one routine each, used by the readers and by rf_scene_validate:
  * finite values, sphere radius > 0, plane normal != 0, polygons with >= 3 vertices and a

@@ -39,10 +39,12 @@ static const RfCommand export_cmd = {
     "refray export (--mitsuba OUT.xml | --pbrt OUT.pbrt | --pov OUT.pov) [options] SCENE\n",
     "Writes SCENE (.nff, .rf, .obj) for another renderer: what it can represent exactly (Lambertian\n"
     "diffuse, mirrors, Fresnel glass, point/spot/directional lights, pinhole and thin-lens cameras,\n"
-    "spheres, triangles, polygons, planes, cylinders; area lights where the target hides them as\n"
-    "refray does), with the conversions in the file's header comment (docs/crosscheck.md). Anything\n"
-    "else (a Phong highlight in Mitsuba, ambient light, a light without falloff in Mitsuba, ...) is\n"
-    "named with its file:line:col and refuses the export (nothing written) unless --lossy.\n",
+    "spheres, triangles, polygons, planes, cylinders, instances (flattened; an ellipsoid or a sheared\n"
+    "cylinder with its placement's matrix for POV-Ray and pbrt); area lights where the target hides\n"
+    "them as refray does), with the conversions in the file's header comment (docs/crosscheck.md).\n"
+    "Anything else (a Phong highlight in Mitsuba, ambient light, a light without falloff in\n"
+    "Mitsuba, ...) is named with its file:line:col and refuses the export (nothing written) unless\n"
+    "--lossy.\n",
     export_tables,
     "exit: 0 written, 2 refused (what the target cannot represent), 4 the scene cannot be read or an\n"
     "output cannot be written, 5 usage (README: Exit codes)\n",

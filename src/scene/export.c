@@ -37,7 +37,7 @@ RfStatus rf_scene_export(const RfScene *scene, const RfExportOptions *opt, RfExp
     c->s = scene;
     if (scene->instance_count > 0) {
         char msg[256];
-        RfStatus st = rf_scene_flatten(scene, &flat, msg, sizeof msg);
+        RfStatus st = rf_scene_flatten(scene, RF_FLATTEN_PLACED_QUADRICS, &flat, msg, sizeof msg);
         if (st != RF_OK) {
             RfSrcLoc none = {0, 0};
             rf__ex_note(c, none, 2, "the scene graph cannot be written as plain primitives: %s (not even with "

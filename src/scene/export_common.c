@@ -267,6 +267,20 @@ void rf__ex_check_hither(RfExCtx *c)
                 rf_export_format_name(c->o->format));
 }
 
+const RfPrimitive *rf__ex_world_prim(const RfScene *s, const RfPrimitive *p, const RfInstance **placement)
+{
+    *placement = NULL;
+    if (p->type != RF_PRIM_INSTANCE)
+        return p;
+    const RfInstance *in = &s->instances[p->u.instance];
+    const RfSceneObject *ob = &s->objects[in->object];
+    const RfPrimitive *q = &s->prims[ob->first];
+    if (ob->count != 1 || (q->type != RF_PRIM_SPHERE && q->type != RF_PRIM_CONE))
+        return NULL;
+    *placement = in;
+    return q;
+}
+
 unsigned char *rf__ex_used_materials(RfExCtx *c)
 {
     const RfScene *s = c->s;
@@ -276,9 +290,10 @@ unsigned char *rf__ex_used_materials(RfExCtx *c)
         return NULL;
     }
     for (size_t i = 0; i < s->prim_count; i++) {
-        const RfPrimitive *p = &s->prims[i];
-        if (!(p->flags & RF_PRIM_IN_OBJECT) && p->type != RF_PRIM_INSTANCE && p->material >= 0 &&
-            (size_t)p->material < s->material_count)
+        const RfInstance *placement;
+        const RfPrimitive *p = (s->prims[i].flags & RF_PRIM_IN_OBJECT) ? NULL
+                                                                        : rf__ex_world_prim(s, &s->prims[i], &placement);
+        if (p && p->material >= 0 && (size_t)p->material < s->material_count)
             used[p->material] |= (p->flags & RF_PRIM_TWO_SIDED) || c->o->two_sided ? 2 : 1;
     }
     return used;
@@ -292,9 +307,11 @@ void rf__ex_note_one_sided(RfExCtx *c, const char *back)
     if (c->o->two_sided)
         return;
     for (size_t i = 0; i < s->prim_count; i++) {
-        const RfPrimitive *p = &s->prims[i];
+        const RfInstance *placement;
+        const RfPrimitive *p = (s->prims[i].flags & RF_PRIM_IN_OBJECT) ? NULL
+                                                                        : rf__ex_world_prim(s, &s->prims[i], &placement);
         /* a sphere's back is seen only from inside it */
-        if (!(p->flags & (RF_PRIM_IN_OBJECT | RF_PRIM_TWO_SIDED)) && p->type != RF_PRIM_SPHERE && !n++)
+        if (p && !(p->flags & RF_PRIM_TWO_SIDED) && p->type != RF_PRIM_SPHERE && !n++)
             first = p->loc;
     }
     if (n)

@@ -142,17 +142,24 @@ static int sided_of(const RfExCtx *c, const RfPrimitive *p)
 
 /* The triangles and polygons of one (material, sidedness, smoothness) as an OBJ file; its
  * <shape> goes into the XML (file 0). */
+/* The path of an OBJ beside the XML, OUT-<kind><index>.obj, and its name as the XML refers to it
+ * (without the folder). */
+static void obj_path(RfExCtx *c, const char *kind, int index, char *path, size_t pathsz, char *base, size_t basesz)
+{
+    const char *out = c->o->output ? c->o->output : "scene.xml";
+    const char *dot = strrchr(out, '.'), *slash = strrchr(out, '/');
+    int stem = dot && (!slash || dot > slash) ? (int)(dot - out) : (int)strlen(out);
+    snprintf(path, pathsz, "%.*s-%s%d.obj", stem, out, kind, index);
+    snprintf(base, basesz, "%s", slash ? strrchr(path, '/') + 1 : path);
+}
+
 static void write_mesh(RfExCtx *c, size_t first, int index)
 {
     const RfScene *s = c->s;
     const RfPrimitive *p0 = &s->prims[first];
     int smooth = smooth_of(s, p0), sided = sided_of(c, p0);
     char path[4096], base[4096];
-    const char *out = c->o->output ? c->o->output : "scene.xml";
-    const char *dot = strrchr(out, '.'), *slash = strrchr(out, '/');
-    int stem = dot && (!slash || dot > slash) ? (int)(dot - out) : (int)strlen(out);
-    snprintf(path, sizeof path, "%.*s-mesh%d.obj", stem, out, index);
-    snprintf(base, sizeof base, "%s", slash ? strrchr(path, '/') + 1 : path);
+    obj_path(c, "mesh", index, path, sizeof path, base, sizeof base);
     rf__ex_printf(c, "  <shape type=\"obj\"><string name=\"filename\" value=\"%s\"/> <boolean name=\"face_normals\" "
                   "value=\"%s\"/>\n", base, smooth ? "false" : "true");
     bsdf_ref(c, p0);
@@ -208,9 +215,94 @@ static void write_mesh(RfExCtx *c, size_t first, int index)
     c->out = c->ex->files + xml_at;
 }
 
-static void write_shape(RfExCtx *c, const RfPrimitive *p, double plane_size)
+/* A point of a sphere's or cone's surface at (u, v) in [0, 1]^2 (around, along), in its object's
+ * space, and the outward normal there (not unit). */
+static void quadric_at(const RfPrimitive *p, double u, double v, RfVec3 *x, RfVec3 *n)
+{
+    double phi = 2.0 * RF_PI * u;
+    if (p->type == RF_PRIM_SPHERE) { /* the poles exact, so that their triangles are exactly degenerate */
+        double theta = RF_PI * v, st = v == 0.0 || v == 1.0 ? 0.0 : sin(theta), ct = v == 0.0 ? 1.0 : v == 1.0 ? -1.0 : cos(theta);
+        *n = rf_vec3(st * cos(phi), ct, st * sin(phi));
+        *x = rf_vec3_add(p->u.sphere.center, rf_vec3_scale(*n, p->u.sphere.radius));
+        return;
+    }
+    const RfCone *k = &p->u.cone;
+    RfVec3 ax = rf_vec3_sub(k->apex, k->base);
+    double len = rf_vec3_length(ax), r = k->base_radius + v * (k->apex_radius - k->base_radius);
+    RfVec3 z = rf_vec3_scale(ax, 1.0 / len), xa = rf__ex_perpendicular(z), ya = rf_vec3_cross(z, xa);
+    RfVec3 radial = rf_vec3_add(rf_vec3_scale(xa, cos(phi)), rf_vec3_scale(ya, sin(phi)));
+    *x = rf_vec3_add(rf_vec3_add(k->base, rf_vec3_scale(ax, v)), rf_vec3_scale(radial, r));
+    *n = rf_vec3_sub(rf_vec3_scale(radial, len), rf_vec3_scale(z, k->apex_radius - k->base_radius));
+}
+
+/* A sphere or cone under a non-similarity transform: Mitsuba's sphere and cylinder take neither
+ * a non-uniform scale nor a shear, so the nearest thing (--lossy) is a mesh of the placed
+ * surface, OUT-placedK.obj, with its exact normals at the vertices. */
+static void write_placed(RfExCtx *c, const RfPrimitive *p, const RfInstance *in, int index)
+{
+    enum { AROUND = 96, ALONG = 48 };
+    int along = p->type == RF_PRIM_SPHERE ? ALONG : 1; /* a cone is straight along its axis */
+    rf__ex_note(c, p->loc, 1, "%s under a non-similarity transform: Mitsuba's %s takes no non-uniform scale or "
+                "shear (%s)", rf_prim_type_name(p->type), p->type == RF_PRIM_SPHERE ? "sphere" : "cylinder",
+                c->o->lossy ? "written as a mesh of its surface" : "refused");
+    if (!c->o->lossy)
+        return;
+    char path[4096], base[4096];
+    obj_path(c, "placed", index, path, sizeof path, base, sizeof base);
+    rf__ex_printf(c, "  <shape type=\"obj\"><string name=\"filename\" value=\"%s\"/> <boolean name=\"face_normals\" "
+                  "value=\"false\"/>\n", base);
+    bsdf_ref(c, p);
+    rf__ex_printf(c, "  </shape>\n");
+    size_t xml_at = (size_t)(c->out - c->ex->files);
+    if (!rf__ex_file(c, path))
+        return;
+    rf__ex_printf(c, "# %s: the %s of line %d under its placement, %d x %d quads (refray export --mitsuba --lossy)\n",
+                  base, rf_prim_type_name(p->type), p->loc.line, AROUND, along);
+    for (int j = 0; j <= along; j++)
+        for (int i = 0; i <= AROUND; i++) {
+            RfVec3 x, n;
+            quadric_at(p, (double)i / AROUND, (double)j / along, &x, &n);
+            rf_transform_point(in->to_world, x, &x);
+            n = rf_vec3_normalize(rf_mat3_mul_vec(in->normal_to_world, n));
+            rf__ex_printf(c, "v %s\nvn %s\n", rf__ex_vec(c, x, " "), rf__ex_vec(c, n, " "));
+        }
+    /* each triangle turned so that its winding agrees with the surface's outward normal (a mirroring
+     * placement reverses it); the degenerate ones at a sphere's poles are left out */
+    for (int j = 0; j < along; j++)
+        for (int i = 0; i < AROUND; i++)
+            for (int h = 0; h < 2; h++) {
+                int a = j * (AROUND + 1) + i, q[3] = {a, h ? a + AROUND + 2 : a + 1, h ? a + AROUND + 1 : a + AROUND + 2};
+                RfVec3 x[3], n[3];
+                for (int k = 0; k < 3; k++) {
+                    quadric_at(p, (double)(q[k] % (AROUND + 1)) / AROUND, (double)(q[k] / (AROUND + 1)) / along, &x[k],
+                               &n[k]);
+                    rf_transform_point(in->to_world, x[k], &x[k]);
+                    n[k] = rf_mat3_mul_vec(in->normal_to_world, n[k]);
+                }
+                RfVec3 g = rf_vec3_cross(rf_vec3_sub(x[1], x[0]), rf_vec3_sub(x[2], x[0]));
+                if (!(rf_vec3_dot(g, g) > 0.0))
+                    continue;
+                if (rf_vec3_dot(g, rf_vec3_add(n[0], rf_vec3_add(n[1], n[2]))) < 0.0) {
+                    int t = q[1];
+                    q[1] = q[2];
+                    q[2] = t;
+                }
+                rf__ex_printf(c, "f %d//%d %d//%d %d//%d\n", q[0] + 1, q[0] + 1, q[1] + 1, q[1] + 1, q[2] + 1, q[2] + 1);
+            }
+    c->out = c->ex->files + xml_at;
+}
+
+static void write_shape(RfExCtx *c, const RfPrimitive *world, double plane_size, int *placed)
 {
     const RfScene *s = c->s;
+    const RfInstance *placement;
+    const RfPrimitive *p = rf__ex_world_prim(s, world, &placement);
+    if (!p)
+        return;
+    if (placement) {
+        write_placed(c, p, placement, (*placed)++);
+        return;
+    }
     if (p->type == RF_PRIM_SPHERE) {
         rf__ex_printf(c, "  <shape type=\"sphere\"><point name=\"center\" value=\"%s\"/> <float name=\"radius\" "
                       "value=\"%s\"/>%s\n", rf__ex_vec(c, p->u.sphere.center, ", "), rf__ex_num(c, p->u.sphere.radius),
@@ -333,13 +425,13 @@ void rf__export_mitsuba(RfExCtx *c)
     free(used);
     rf__ex_note_one_sided(c, "shows it black and stops rays there");
     double plane_size = 1e3 * extent;
-    int meshes = 0, *keys = NULL;
+    int meshes = 0, placed = 0, *keys = NULL;
     for (size_t i = 0; i < s->prim_count; i++) {
         const RfPrimitive *p = &s->prims[i];
         if (p->flags & RF_PRIM_IN_OBJECT)
             continue;
         if (!is_mesh(p)) {
-            write_shape(c, p, plane_size);
+            write_shape(c, p, plane_size, &placed);
             continue;
         }
         /* the first primitive of its (material, sides, smoothness) group starts a mesh file */

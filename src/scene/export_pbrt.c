@@ -3,6 +3,7 @@
  * writer is checked by content only (tests/test_export.c), not by renders. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "export_internal.h"
@@ -10,22 +11,25 @@
 
 #define PBRT_LIGHT_SCALE 3.14159265358979323846 /* as Mitsuba's: rho = kd, I' = pi I */
 
-static void material(RfExCtx *c, const RfMaterial *m)
+/* The material of a shape; what pbrt-v4 cannot represent is noted at its first use only
+ * (notes 1), not once per shape of a mesh. */
+static void material(RfExCtx *c, const RfMaterial *m, int notes)
 {
     RfExMat x = rf__ex_classify(c->s, m);
-    if (x.highlight)
+    if (notes && x.highlight)
         rf__ex_note(c, m->loc, 1, "material '%s': Phong highlight ks (%s): pbrt-v4 has no Phong lobe (dropped)",
                     m->name, rf__ex_rgb(c, m->ks, " "));
     if (x.transmits || x.fresnel) {
-        if (!x.fresnel || m->kr.r != 1.0 || m->kr.g != 1.0 || m->kr.b != 1.0 || m->kt.r != 1.0 || m->kt.g != 1.0 ||
-            m->kt.b != 1.0 || x.diffuse)
+        if (notes && (!x.fresnel || m->kr.r != 1.0 || m->kr.g != 1.0 || m->kr.b != 1.0 || m->kt.r != 1.0 ||
+                      m->kt.g != 1.0 || m->kt.b != 1.0 || x.diffuse))
             rf__ex_note(c, m->loc, 1, "material '%s': pbrt-v4's dielectric is exactly kr = kt = 1 with `fresnel` and "
                         "no diffuse term (written as that)", m->name);
         rf__ex_printf(c, "  Material \"dielectric\" \"float eta\" [ %s ]  # '%s'\n", rf__ex_num(c, m->ior), m->name);
     } else if (x.mirror) {
-        rf__ex_note(c, m->loc, 1, "material '%s': mirror kr (%s): pbrt-v4's conductor made from a reflectance "
-                    "follows a metal's Fresnel curve, refray's mirror weight is constant%s", m->name,
-                    rf__ex_rgb(c, m->kr, " "), x.diffuse ? "; its diffuse part dropped" : "");
+        if (notes)
+            rf__ex_note(c, m->loc, 1, "material '%s': mirror kr (%s): pbrt-v4's conductor made from a reflectance "
+                        "follows a metal's Fresnel curve, refray's mirror weight is constant%s", m->name,
+                        rf__ex_rgb(c, m->kr, " "), x.diffuse ? "; its diffuse part dropped" : "");
         rf__ex_printf(c, "  Material \"conductor\" \"rgb reflectance\" [ %s ] \"float roughness\" [ 0 ]  # '%s'\n",
                       rf__ex_rgb(c, m->kr, " "), m->name);
     } else {
@@ -83,11 +87,21 @@ static void light(RfExCtx *c, const RfLight *l)
     }
 }
 
-static void shape(RfExCtx *c, const RfPrimitive *p, double plane_size)
+static void shape(RfExCtx *c, const RfPrimitive *world, double plane_size, unsigned char *noted)
 {
     const RfScene *s = c->s;
+    const RfInstance *placement;
+    const RfPrimitive *p = rf__ex_world_prim(s, world, &placement);
+    if (!p)
+        return;
     rf__ex_printf(c, "AttributeBegin  # line %d\n", p->loc.line);
-    material(c, &s->materials[p->material]);
+    material(c, &s->materials[p->material], !noted[p->material]);
+    noted[p->material] = 1;
+    if (placement) { /* an ellipsoid or a sheared cone: the quadric in its object's space, placed */
+        const RfMat4 *m = &placement->to_world;
+        frame(c, rf_vec3(m->m[0][0], m->m[1][0], m->m[2][0]), rf_vec3(m->m[0][1], m->m[1][1], m->m[2][1]),
+              rf_vec3(m->m[0][2], m->m[1][2], m->m[2][2]), rf_vec3(m->m[0][3], m->m[1][3], m->m[2][3]));
+    }
     switch (p->type) {
     case RF_PRIM_SPHERE:
         if (p->flags & RF_PRIM_INSIDE)
@@ -195,8 +209,14 @@ void rf__export_pbrt(RfExCtx *c)
                       rf__ex_rgb(c, s->render.background, " "));
     for (size_t i = 0; i < s->light_count; i++)
         light(c, &s->lights[i]);
+    unsigned char *noted = calloc(s->material_count ? s->material_count : 1, 1);
+    if (!noted) {
+        c->ex->failed = 1;
+        return;
+    }
     for (size_t i = 0; i < s->prim_count; i++)
         if (!(s->prims[i].flags & RF_PRIM_IN_OBJECT))
-            shape(c, &s->prims[i], 1e3 * extent);
+            shape(c, &s->prims[i], 1e3 * extent, noted);
+    free(noted);
     rf__ex_note_one_sided(c, "shades it");
 }

@@ -139,9 +139,24 @@ typedef struct {
     int smooth_noted;
 } PovTally;
 
-static void write_prim(RfExCtx *c, const RfPrimitive *p, PovTally *t)
+/* "  matrix <...>": POV-Ray's form of the affine placement m (it multiplies a point as a row vector,
+ * so its rows are m's columns, the translation last) */
+static void pov_matrix(RfExCtx *c, const RfMat4 *m)
+{
+    RfVec3 col[4];
+    for (int k = 0; k < 4; k++)
+        col[k] = rf_vec3(m->m[0][k], m->m[1][k], m->m[2][k]);
+    rf__ex_printf(c, "  matrix <%s,  %s,  %s,  %s>\n", rf__ex_vec(c, col[0], ", "), rf__ex_vec(c, col[1], ", "),
+                  rf__ex_vec(c, col[2], ", "), rf__ex_vec(c, col[3], ", "));
+}
+
+static void write_prim(RfExCtx *c, const RfPrimitive *world, PovTally *t)
 {
     const RfScene *s = c->s;
+    const RfInstance *placement;
+    const RfPrimitive *p = rf__ex_world_prim(s, world, &placement);
+    if (!p)
+        return;
     const RfMaterial *m = &s->materials[p->material];
     int smooth = (p->flags & RF_PRIM_VERTEX_NORMALS) && (m->flags & RF_MAT_SMOOTH);
     switch (p->type) {
@@ -192,8 +207,10 @@ static void write_prim(RfExCtx *c, const RfPrimitive *p, PovTally *t)
     case RF_PRIM_TYPE_COUNT:
         return;
     }
+    if (placement) /* an ellipsoid or a sheared cone: the quadric in its object's space, placed */
+        pov_matrix(c, &placement->to_world);
     rf__ex_printf(c, "%s", material_ref(c, p->material));
-    if (p->type == RF_PRIM_SPHERE && positive_kt(m) && !c->filtered)
+    if (p->type == RF_PRIM_SPHERE && positive_kt(m) && !c->filtered && !placement)
         opaque_shadow_discs(c, p);
     else if (positive_kt(m) && !c->filtered && !t->glass++)
         t->first_glass = p->loc;

@@ -287,6 +287,7 @@ typedef struct {
     int mirror;  /* det M < 0: the winding flips, so vertex order is reversed */
     int similar; /* a similarity (rotation x uniform scale): spheres stay spheres */
     double scale;
+    unsigned flags; /* rf_scene_flatten's */
 } Xf;
 
 static RfStatus emit(const RfScene *s, const RfPrimitive *p, const Xf *x, RfScene *out, char *msg,
@@ -306,6 +307,30 @@ static RfStatus emit_range(const RfScene *s, size_t first, size_t end, int world
     return RF_OK;
 }
 
+/* RF_FLATTEN_PLACED_QUADRICS: the quadric p as it is, the one primitive of a new object, and a
+ * world instance placing it by x's matrix. */
+static RfStatus emit_placed(const RfPrimitive *p, const Xf *x, RfScene *out, char *msg, size_t msgsz)
+{
+    int object;
+    RfPrimitive q = *p, in;
+    RfStatus st = rf_scene_add_object(out, "placed", p->loc, &object);
+    if (st)
+        return rf__msgf(msg, msgsz, st, "out of memory");
+    q.flags |= RF_PRIM_IN_OBJECT;
+    if ((st = rf_scene_add_primitive(out, &q, msg, msgsz)) != RF_OK)
+        return st;
+    out->objects[object].count = 1;
+    memset(&in, 0, sizeof in);
+    in.type = RF_PRIM_INSTANCE;
+    in.flags = RF_PRIM_TWO_SIDED; /* an instance has no sides: its object's primitive has */
+    in.material = p->material;    /* unused, as a reader's instance's */
+    in.loc = p->loc;
+    if ((st = rf_scene_add_instance(out, object, x->m, &in.u.instance)) != RF_OK)
+        return rf__msgf(msg, msgsz, st, st == RF_ERR_SINGULAR ? "the placement of the %s of line %d is singular"
+                                                               : "out of memory", rf_prim_type_name(p->type), p->loc.line);
+    return rf_scene_add_primitive(out, &in, msg, msgsz);
+}
+
 static RfStatus emit(const RfScene *s, const RfPrimitive *p, const Xf *x, RfScene *out, char *msg,
                      size_t msgsz)
 {
@@ -323,10 +348,13 @@ static RfStatus emit(const RfScene *s, const RfPrimitive *p, const Xf *x, RfScen
         double lambda = 1.0;
         y.similar = rf_matn_is_similarity(3, &lin.m[0][0], &lambda);
         y.scale = sqrt(lambda);
+        y.flags = x->flags;
         return emit_range(s, ob->first, ob->first + ob->count, 0, &y, out, msg, msgsz);
     }
     case RF_PRIM_SPHERE:
     case RF_PRIM_CONE:
+        if (!x->similar && (x->flags & RF_FLATTEN_PLACED_QUADRICS))
+            return emit_placed(p, x, out, msg, msgsz);
         if (!x->similar)
             return rf__msgf(msg, msgsz, RF_ERR_DOMAIN,
                         "%s under a non-similarity transform (line %d) has no flat form",
@@ -373,7 +401,7 @@ static RfStatus emit(const RfScene *s, const RfPrimitive *p, const Xf *x, RfScen
     return rf_scene_add_primitive(out, &q, msg, msgsz);
 }
 
-RfStatus rf_scene_flatten(const RfScene *scene, RfScene *out, char *msg, size_t msgsz)
+RfStatus rf_scene_flatten(const RfScene *scene, unsigned flags, RfScene *out, char *msg, size_t msgsz)
 {
     rf_scene_init(out);
     out->format = scene->format;
@@ -395,6 +423,7 @@ RfStatus rf_scene_flatten(const RfScene *scene, RfScene *out, char *msg, size_t 
     id.mirror = 0;
     id.similar = 1;
     id.scale = 1.0;
+    id.flags = flags;
     st = emit_range(scene, 0, scene->prim_count, 1, &id, out, msg, msgsz);
     if (st)
         rf_scene_free(out);
