@@ -291,8 +291,8 @@ static void t_export_refusals(void)
  * get the quadric in its object's space with the placement's matrix, by hand: the instance's
  * `scale 1 2 1 translate 0 1 0` and the `matrix` rows (1 0.5 0 1.6 / 0 1.6 0 0 / 0 0 1 -0.4) as
  * POV-Ray's rows (the matrix's columns) and pbrt's column-major ConcatTransform. Mitsuba with
- * --lossy gets a mesh whose every vertex lies on the ellipsoid x^2 + ((y - 1)/2)^2 + z^2 = 1 with
- * the normal (x, (y - 1)/4, z) there, and whose every triangle winds around that normal. */
+ * --lossy gets meshes whose every vertex lies on the placed surface with its normal there, and
+ * whose every triangle winds around those normals. */
 static const char *PLACED =
     "camera eye 0 1 6  target 0 1 0  up 0 1 0  fov 40\n"
     "light point 2 4 4  intensity 10\n"
@@ -301,6 +301,59 @@ static const char *PLACED =
     "instance b scale 1 2 1  translate 0 1 0\n"
     "object c\ncylinder 0 0 0  0 1 0  0.4\nend\n"
     "instance c matrix 1 0.5 0 1.6  0 1.6 0 0  0 0 1 -0.4\n";
+
+/* PLACED's ellipsoid and sheared cylinder: how far x is from the surface, and the unit normal
+ * there by (M^-1)^T (§4.9). The cylinder: object point p = M^-1 x = (x - 1.6 - 0.5 p.y, y / 1.6,
+ * z + 0.4) on p.x^2 + p.z^2 = 0.16, 0 <= p.y <= 1; normal (M^-1)^T (p.x, 0, p.z) = (p.x,
+ * -0.3125 p.x, p.z). */
+static double ellipsoid_at(RfVec3 x, RfVec3 *normal)
+{
+    *normal = rf_vec3_normalize(rf_vec3(x.x, (x.y - 1) / 4, x.z));
+    return fabs(x.x * x.x + (x.y - 1) * (x.y - 1) / 4 + x.z * x.z - 1);
+}
+
+static double sheared_cylinder_at(RfVec3 x, RfVec3 *normal)
+{
+    double py = x.y / 1.6, px = x.x - 1.6 - 0.5 * py, pz = x.z + 0.4;
+    *normal = rf_vec3_normalize(rf_vec3(px, -0.3125 * px, pz));
+    return fmax(fabs(px * px + pz * pz - 0.16), fmax(-py, py - 1));
+}
+
+/* A placed quadric's mesh (Mitsuba --lossy): its vertex count, every vertex on the surface with
+ * the surface's normal, the face count, and every face wound around those normals. */
+static void check_placed_obj(const char *text, double (*surface)(RfVec3, RfVec3 *), int want_v, int want_faces)
+{
+    static RfVec3 v[97 * 49], vn[97 * 49];
+    int nv = 0, nn = 0, faces = 0, bad_winding = 0;
+    double worst_v = 0.0, worst_n = 0.0;
+    for (const char *l = text; l && *l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : NULL) {
+        double a, b, c;
+        int i[3];
+        RfVec3 want;
+        if (sscanf(l, "v %lf %lf %lf", &a, &b, &c) == 3 && nv < 97 * 49) {
+            v[nv++] = rf_vec3(a, b, c);
+            worst_v = fmax(worst_v, surface(v[nv - 1], &want));
+        } else if (sscanf(l, "vn %lf %lf %lf", &a, &b, &c) == 3 && nn < nv) {
+            surface(v[nn], &want);
+            vn[nn++] = rf_vec3(a, b, c);
+            worst_n = fmax(worst_n, rf_vec3_length(rf_vec3_sub(rf_vec3(a, b, c), want)));
+        } else if (sscanf(l, "f %d//%*d %d//%*d %d//%*d", &i[0], &i[1], &i[2]) == 3) {
+            faces++;
+            if (i[0] < 1 || i[1] < 1 || i[2] < 1 || i[0] > nv || i[1] > nv || i[2] > nv) {
+                bad_winding++;
+                continue;
+            }
+            RfVec3 a0 = v[i[0] - 1], g = rf_vec3_cross(rf_vec3_sub(v[i[1] - 1], a0), rf_vec3_sub(v[i[2] - 1], a0));
+            bad_winding += !(rf_vec3_dot(g, rf_vec3_add(vn[i[0] - 1], rf_vec3_add(vn[i[1] - 1], vn[i[2] - 1]))) > 0.0);
+        }
+    }
+    RF_CHECK_EQ_INT(nv, want_v);
+    RF_CHECK_EQ_INT(nn, want_v);
+    RF_CHECK_EQ_INT(faces, want_faces);
+    RF_CHECK_EQ_INT(bad_winding, 0);
+    RF_CHECK(worst_v < 1e-14);
+    RF_CHECK(worst_n < 1e-14);
+}
 
 static void t_export_placed_quadrics(void)
 {
@@ -332,35 +385,8 @@ static void t_export_placed_quadrics(void)
     if (ex.file_count == 3) {
         RF_CHECK(strstr(ex.files[0].text, "value=\"out-placed0.obj\"") && strstr(ex.files[0].text, "value=\"out-placed1.obj\""));
         RF_CHECK(strcmp(ex.files[1].path, "/tmp/out-placed0.obj") == 0);
-        static RfVec3 v[97 * 49], vn[97 * 49];
-        int nv = 0, nn = 0, faces = 0, bad_winding = 0;
-        double worst_v = 0.0, worst_n = 0.0;
-        for (const char *l = ex.files[1].text; l && *l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : NULL) {
-            double a, b, c;
-            int i[3];
-            if (sscanf(l, "v %lf %lf %lf", &a, &b, &c) == 3 && nv < 97 * 49) {
-                v[nv++] = rf_vec3(a, b, c);
-                worst_v = fmax(worst_v, fabs(a * a + (b - 1) * (b - 1) / 4 + c * c - 1));
-            } else if (sscanf(l, "vn %lf %lf %lf", &a, &b, &c) == 3 && nn < nv) {
-                RfVec3 want = rf_vec3_normalize(rf_vec3(v[nn].x, (v[nn].y - 1) / 4, v[nn].z));
-                vn[nn++] = rf_vec3(a, b, c);
-                worst_n = fmax(worst_n, rf_vec3_length(rf_vec3_sub(rf_vec3(a, b, c), want)));
-            } else if (sscanf(l, "f %d//%*d %d//%*d %d//%*d", &i[0], &i[1], &i[2]) == 3) {
-                faces++;
-                if (i[0] < 1 || i[1] < 1 || i[2] < 1 || i[0] > nv || i[1] > nv || i[2] > nv) {
-                    bad_winding++;
-                    continue;
-                }
-                RfVec3 a0 = v[i[0] - 1], g = rf_vec3_cross(rf_vec3_sub(v[i[1] - 1], a0), rf_vec3_sub(v[i[2] - 1], a0));
-                bad_winding += !(rf_vec3_dot(g, rf_vec3_add(vn[i[0] - 1], rf_vec3_add(vn[i[1] - 1], vn[i[2] - 1]))) > 0.0);
-            }
-        }
-        RF_CHECK_EQ_INT(nv, 97 * 49);
-        RF_CHECK_EQ_INT(nn, 97 * 49);
-        RF_CHECK_EQ_INT(faces, 96 * 48 * 2 - 2 * 96); /* the poles' degenerate triangles left out */
-        RF_CHECK_EQ_INT(bad_winding, 0);
-        RF_CHECK(worst_v < 1e-14);
-        RF_CHECK(worst_n < 1e-14);
+        check_placed_obj(ex.files[1].text, ellipsoid_at, 97 * 49, 96 * 48 * 2 - 2 * 96); /* the poles' degenerate triangles left out */
+        check_placed_obj(ex.files[2].text, sheared_cylinder_at, 97 * 2, 96 * 2);
     }
     rf_export_free(&ex);
 }

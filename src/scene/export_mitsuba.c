@@ -140,8 +140,6 @@ static int sided_of(const RfExCtx *c, const RfPrimitive *p)
     return (p->flags & RF_PRIM_TWO_SIDED) || c->o->two_sided;
 }
 
-/* The triangles and polygons of one (material, sidedness, smoothness) as an OBJ file; its
- * <shape> goes into the XML (file 0). */
 /* The path of an OBJ beside the XML, OUT-<kind><index>.obj, and its name as the XML refers to it
  * (without the folder). */
 static void obj_path(RfExCtx *c, const char *kind, int index, char *path, size_t pathsz, char *base, size_t basesz)
@@ -153,6 +151,8 @@ static void obj_path(RfExCtx *c, const char *kind, int index, char *path, size_t
     snprintf(base, basesz, "%s", slash ? strrchr(path, '/') + 1 : path);
 }
 
+/* The triangles and polygons of one (material, sidedness, smoothness) as an OBJ file; its
+ * <shape> goes into the XML (file 0). */
 static void write_mesh(RfExCtx *c, size_t first, int index)
 {
     const RfScene *s = c->s;
@@ -247,6 +247,19 @@ static void write_placed(RfExCtx *c, const RfPrimitive *p, const RfInstance *in,
                 c->o->lossy ? "written as a mesh of its surface" : "refused");
     if (!c->o->lossy)
         return;
+    int nv = (AROUND + 1) * (along + 1);
+    RfVec3 *x = malloc(2 * sizeof *x * (size_t)nv), *n = x + nv;
+    if (!x) {
+        c->ex->failed = 1;
+        return;
+    }
+    for (int j = 0; j <= along; j++)
+        for (int i = 0; i <= AROUND; i++) {
+            int k = j * (AROUND + 1) + i;
+            quadric_at(p, (double)i / AROUND, (double)j / along, &x[k], &n[k]);
+            rf_transform_point(in->to_world, x[k], &x[k]);
+            n[k] = rf_vec3_normalize(rf_mat3_mul_vec(in->normal_to_world, n[k])); /* §4.9 */
+        }
     char path[4096], base[4096];
     obj_path(c, "placed", index, path, sizeof path, base, sizeof base);
     rf__ex_printf(c, "  <shape type=\"obj\"><string name=\"filename\" value=\"%s\"/> <boolean name=\"face_normals\" "
@@ -254,42 +267,32 @@ static void write_placed(RfExCtx *c, const RfPrimitive *p, const RfInstance *in,
     bsdf_ref(c, p);
     rf__ex_printf(c, "  </shape>\n");
     size_t xml_at = (size_t)(c->out - c->ex->files);
-    if (!rf__ex_file(c, path))
-        return;
-    rf__ex_printf(c, "# %s: the %s of line %d under its placement, %d x %d quads (refray export --mitsuba --lossy)\n",
-                  base, rf_prim_type_name(p->type), p->loc.line, AROUND, along);
-    for (int j = 0; j <= along; j++)
-        for (int i = 0; i <= AROUND; i++) {
-            RfVec3 x, n;
-            quadric_at(p, (double)i / AROUND, (double)j / along, &x, &n);
-            rf_transform_point(in->to_world, x, &x);
-            n = rf_vec3_normalize(rf_mat3_mul_vec(in->normal_to_world, n));
-            rf__ex_printf(c, "v %s\nvn %s\n", rf__ex_vec(c, x, " "), rf__ex_vec(c, n, " "));
-        }
-    /* each triangle turned so that its winding agrees with the surface's outward normal (a mirroring
-     * placement reverses it); the degenerate ones at a sphere's poles are left out */
-    for (int j = 0; j < along; j++)
-        for (int i = 0; i < AROUND; i++)
-            for (int h = 0; h < 2; h++) {
-                int a = j * (AROUND + 1) + i, q[3] = {a, h ? a + AROUND + 2 : a + 1, h ? a + AROUND + 1 : a + AROUND + 2};
-                RfVec3 x[3], n[3];
-                for (int k = 0; k < 3; k++) {
-                    quadric_at(p, (double)(q[k] % (AROUND + 1)) / AROUND, (double)(q[k] / (AROUND + 1)) / along, &x[k],
-                               &n[k]);
-                    rf_transform_point(in->to_world, x[k], &x[k]);
-                    n[k] = rf_mat3_mul_vec(in->normal_to_world, n[k]);
+    if (rf__ex_file(c, path)) {
+        rf__ex_printf(c, "# %s: the %s of line %d under its placement, %d x %d quads (refray export --mitsuba --lossy)\n",
+                      base, rf_prim_type_name(p->type), p->loc.line, AROUND, along);
+        for (int k = 0; k < nv; k++)
+            rf__ex_printf(c, "v %s\nvn %s\n", rf__ex_vec(c, x[k], " "), rf__ex_vec(c, n[k], " "));
+        /* each triangle wound around the surface's outward normal (a mirroring placement reverses
+         * the grid's order); the degenerate ones at a sphere's poles are left out */
+        for (int j = 0; j < along; j++)
+            for (int i = 0; i < AROUND; i++)
+                for (int h = 0; h < 2; h++) {
+                    int a = j * (AROUND + 1) + i;
+                    int q[3] = {a, h ? a + AROUND + 2 : a + 1, h ? a + AROUND + 1 : a + AROUND + 2};
+                    RfVec3 g = rf_vec3_cross(rf_vec3_sub(x[q[1]], x[q[0]]), rf_vec3_sub(x[q[2]], x[q[0]]));
+                    if (!(rf_vec3_dot(g, g) > 0.0))
+                        continue;
+                    if (rf_vec3_dot(g, rf_vec3_add(n[q[0]], rf_vec3_add(n[q[1]], n[q[2]]))) < 0.0) {
+                        int t = q[1];
+                        q[1] = q[2];
+                        q[2] = t;
+                    }
+                    rf__ex_printf(c, "f %d//%d %d//%d %d//%d\n", q[0] + 1, q[0] + 1, q[1] + 1, q[1] + 1, q[2] + 1,
+                                  q[2] + 1);
                 }
-                RfVec3 g = rf_vec3_cross(rf_vec3_sub(x[1], x[0]), rf_vec3_sub(x[2], x[0]));
-                if (!(rf_vec3_dot(g, g) > 0.0))
-                    continue;
-                if (rf_vec3_dot(g, rf_vec3_add(n[0], rf_vec3_add(n[1], n[2]))) < 0.0) {
-                    int t = q[1];
-                    q[1] = q[2];
-                    q[2] = t;
-                }
-                rf__ex_printf(c, "f %d//%d %d//%d %d//%d\n", q[0] + 1, q[0] + 1, q[1] + 1, q[1] + 1, q[2] + 1, q[2] + 1);
-            }
-    c->out = c->ex->files + xml_at;
+        c->out = c->ex->files + xml_at;
+    }
+    free(x);
 }
 
 static void write_shape(RfExCtx *c, const RfPrimitive *world, double plane_size, int *placed)
