@@ -29,6 +29,7 @@
 #include "refray/image.h"
 #include "refray/render.h"
 #include "refray/scene.h"
+#include "refray/scene_export.h"
 #include "refray/scene_io.h"
 
 /* Work bounds: a parsed scene larger than this is checked but not traced (the BVH build and
@@ -38,6 +39,10 @@
 /* the tiny render */
 #define RF_FUZZ_RENDER_W 4
 #define RF_FUZZ_RENDER_H 3
+/* the exports: the flattened scene's size (an instance of a quadric under a non-similarity
+ * transform becomes a mesh of ~9,000 triangles for Mitsuba) */
+#define RF_FUZZ_MAX_EXPORT_TRIANGLES 5000
+#define RF_FUZZ_MAX_EXPORT_PLACEMENTS 32
 
 /* dir/name into out; 0 on success, -1 when it does not fit. */
 static inline int rf_fuzz_path(char *out, size_t size, const char *dir, const char *name)
@@ -132,7 +137,28 @@ static inline void rf_fuzz_rays(const RfScene *s, const RfTracer *tr)
         }
 }
 
-/* What the commands do with a parsed scene (refray info, refray render), bounded. */
+/* refray export to each target, in memory, with --lossy (the most code) and without. */
+static inline void rf_fuzz_export(const RfScene *s)
+{
+    RfTriangleCount tc = rf_scene_triangle_count(s);
+    if (tc.rendered > RF_FUZZ_MAX_EXPORT_TRIANGLES || tc.instances_rendered > RF_FUZZ_MAX_EXPORT_PLACEMENTS)
+        return;
+    static const RfExportFormat formats[] = {RF_EXPORT_MITSUBA, RF_EXPORT_PBRT, RF_EXPORT_POV};
+    for (size_t f = 0; f < sizeof formats / sizeof formats[0]; f++)
+        for (int lossy = 0; lossy < 2; lossy++) {
+            RfExportOptions o = rf_export_options_default();
+            RfExport ex;
+            o.format = formats[f];
+            o.source = "fuzz";
+            o.output = formats[f] == RF_EXPORT_MITSUBA ? "fuzz.xml" : formats[f] == RF_EXPORT_PBRT ? "fuzz.pbrt" : "fuzz.pov";
+            o.lossy = lossy;
+            o.two_sided = lossy; /* the other sides' rule on the second pass */
+            (void)rf_scene_export(s, &o, &ex);
+            rf_export_free(&ex);
+        }
+}
+
+/* What the commands do with a parsed scene (refray info, refray render, refray export), bounded. */
 static inline void rf_fuzz_scene(const RfScene *s)
 {
     char err[512];
@@ -149,6 +175,8 @@ static inline void rf_fuzz_scene(const RfScene *s)
         return;
     for (size_t i = 0; i < s->object_count; i++)
         (void)rf_scene_object_bounds(s, (int)i, &lo, &hi);
+    if (s->has_camera)
+        rf_fuzz_export(s);
 
     RfTracerOptions topt = rf_tracer_options_default();
     topt.threads = 1;
