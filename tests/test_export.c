@@ -259,6 +259,7 @@ static void t_export_refusals(void)
         {RF_EXPORT_POV, "material g  kr 0.5  kt 1  ior 1.5  fresnel\nsphere 0 0 0 1\n",
          "t.rf:3:1: material 'g': Fresnel glass with kr"},
         {RF_EXPORT_PBRT, "material e  kd 1  emission 2\nsphere 0 0 0 1\n", "t.rf:3:1: material 'e': emission"},
+        {RF_EXPORT_POV, "material w kd 1\nsphere 0 0 0 1  inside\n", "t.rf:4:1: inside-only sphere: POV-Ray's sphere"},
         {RF_EXPORT_MITSUBA, "material w kd 1\nobject b\nsphere 0 0 0 1\nend\ninstance b scale 1 2 1\n",
          "t.rf:5:1: sphere under a non-similarity transform: Mitsuba's sphere takes no non-uniform scale"},
     };
@@ -285,6 +286,28 @@ static void t_export_refusals(void)
         rf_test_checks++;
         rf_export_free(&ex);
     }
+    /* --two-sided: refray then sees an inside-only sphere from outside too, as every target does */
+    static const char inside[] = "camera eye 0 0 5  target 0 0 0  up 0 1 0  fov 40\nlight point 0 3 3\n"
+                                 "material w kd 1\nsphere 0 0 0 1  inside\n";
+    static const RfExportFormat formats[] = {RF_EXPORT_MITSUBA, RF_EXPORT_PBRT, RF_EXPORT_POV};
+    RfScene s;
+    char err[512];
+    if (rf_scene_read_rf("t.rf", inside, strlen(inside), &s, err, sizeof err) != RF_OK) {
+        rf_test_fail(__FILE__, __LINE__, "scene: %s", err);
+        return;
+    }
+    for (size_t f = 0; f < 3; f++) {
+        RfExportOptions o = rf_export_options_default();
+        RfExport ex;
+        o.format = formats[f];
+        o.source = "t.rf";
+        o.output = "/tmp/out.x";
+        o.two_sided = 1;
+        RF_CHECK_EQ_INT(rf_scene_export(&s, &o, &ex), RF_OK);
+        RF_CHECK(!ex.notes || !strstr(ex.notes, "inside-only"));
+        rf_export_free(&ex);
+    }
+    rf_scene_free(&s);
 }
 
 /* Quadrics under non-similarity transforms (scenes/crosscheck/placed.rf's kind): POV-Ray and pbrt

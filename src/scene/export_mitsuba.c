@@ -310,7 +310,7 @@ static void write_shape(RfExCtx *c, const RfPrimitive *world, double plane_size,
         rf__ex_printf(c, "  <shape type=\"sphere\"><point name=\"center\" value=\"%s\"/> <float name=\"radius\" "
                       "value=\"%s\"/>%s\n", rf__ex_vec(c, p->u.sphere.center, ", "), rf__ex_num(c, p->u.sphere.radius),
                       (p->flags & RF_PRIM_INSIDE) ? " <boolean name=\"flip_normals\" value=\"true\"/>" : "");
-        if (p->flags & RF_PRIM_INSIDE)
+        if ((p->flags & RF_PRIM_INSIDE) && !c->o->two_sided)
             rf__ex_note(c, p->loc, 1, "inside-only sphere: Mitsuba's sphere blocks rays from outside too");
     } else if (p->type == RF_PRIM_PLANE) {
         RfVec3 n = p->u.plane.normal, a = rf__ex_perpendicular(n), b = rf_vec3_cross(n, a);

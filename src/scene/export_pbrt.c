@@ -104,7 +104,7 @@ static void shape(RfExCtx *c, const RfPrimitive *world, double plane_size, unsig
     }
     switch (p->type) {
     case RF_PRIM_SPHERE:
-        if (p->flags & RF_PRIM_INSIDE)
+        if ((p->flags & RF_PRIM_INSIDE) && !c->o->two_sided)
             rf__ex_note(c, p->loc, 1, "inside-only sphere: pbrt-v4's sphere is seen from both sides");
         rf__ex_printf(c, "  Translate %s\n  Shape \"sphere\" \"float radius\" [ %s ]\n",
                       rf__ex_vec(c, p->u.sphere.center, " "), rf__ex_num(c, p->u.sphere.radius));

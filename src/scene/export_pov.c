@@ -161,6 +161,8 @@ static void write_prim(RfExCtx *c, const RfPrimitive *world, PovTally *t)
     int smooth = (p->flags & RF_PRIM_VERTEX_NORMALS) && (m->flags & RF_MAT_SMOOTH);
     switch (p->type) {
     case RF_PRIM_SPHERE:
+        if ((p->flags & RF_PRIM_INSIDE) && !c->o->two_sided)
+            rf__ex_note(c, p->loc, 1, "inside-only sphere: POV-Ray's sphere is seen from outside too");
         rf__ex_printf(c, "sphere { <%s>, %s\n", rf__ex_vec(c, p->u.sphere.center, ", "),
                       rf__ex_num(c, p->u.sphere.radius));
         break;
