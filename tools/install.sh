@@ -21,6 +21,16 @@ destdir=$1 prefix=$2 libdir=$3
 root=$destdir$prefix
 list=$root/share/refray/installed-files
 
+# ldconfig's cache, so that programs find librefray.so.0 without LD_LIBRARY_PATH: only as root,
+# installing for real (no DESTDIR), into a folder the cache covers (/etc/ld.so.conf names it, as
+# Debian's does /usr/local/lib); /usr/lib is searched without the cache, a private prefix never
+refresh_ld_cache() {
+    if [ -z "$destdir" ] && [ "$(id -u)" = 0 ] && command -v ldconfig >/dev/null 2>&1 &&
+        cat /etc/ld.so.conf /etc/ld.so.conf.d/*.conf 2>/dev/null | grep -qx "$libdir"; then
+        ldconfig && echo "ran ldconfig ($libdir is in its cache)"
+    fi
+}
+
 # put FILE MODE DIR [NAME]: copies FILE into DIR (under DESTDIR) and records it
 put() {
     install -d "$destdir$3"
@@ -77,6 +87,7 @@ EOF
     echo "$prefix/share/refray/installed-files" >> "$list.tmp"
     mv "$list.tmp" "$list"
     echo "installed $(wc -l < "$list") files under $root (list: $list)"
+    refresh_ld_cache
     ;;
 uninstall)
     if [ ! -f "$list" ]; then
@@ -94,6 +105,7 @@ uninstall)
         esac
     done < "$list"
     echo "removed $n files under $root"
+    refresh_ld_cache
     ;;
 *)
     echo "usage: tools/install.sh install BUILD DESTDIR PREFIX LIBDIR | uninstall DESTDIR PREFIX LIBDIR" >&2
