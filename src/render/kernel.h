@@ -122,8 +122,8 @@ typedef struct {
     RfMotionState **motion;         /* per thread: moving instances at the sample's time (or NULL) */
     const RfScene *scene;           /* for the names in an explained path */
     /* 1: a tile whose camera rays provably meet nothing (rf_kernel_tile_misses) gets the
-     * background without a ray traced; 0 where a tile is always traced (a lens, motion, a filter
-     * wider than the pixel, refray trace, an invalid background). Never in the general kernel. */
+     * background without a ray traced; 0 where a tile is always traced (a lens, motion, refray
+     * trace, an invalid background). Never in the general kernel. */
     int cull;
 } RfKernelJob;
 

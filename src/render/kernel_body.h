@@ -376,8 +376,12 @@ static RfRgb RF_KNAME(camera_sample)(const RfKernelJob *job, double px, double p
 
 
 /* The value of a pixel from its samples (§3.9): the box filter's mean, or a filter's weighted
- * mean over samples drawn in [-radius, radius]^2 around the centre. One sample: the centre. */
-static void RF_KNAME(pixels)(const RfKernelJob *job, RfTile tile, int thread, int n)
+ * mean over samples drawn in [-radius, radius]^2 around the centre. One sample: the centre.
+ * missed (more than one sample, a filter wider than the pixel): no camera ray of the tile can hit
+ * anything (rf_kernel_tile_misses), so every sample is the background, counted but not traced; the positions, weights and sums stay those of a traced
+ * tile, so the pixels get the same bits (for the box filter and one sample rf_kernel_background
+ * does it without the positions). */
+static void RF_KNAME(pixels)(const RfKernelJob *job, RfTile tile, int thread, int n, int missed)
 {
     RfRenderStats *st = &job->per_thread[thread];
     uint64_t *shadow_cache = rf_kernel_shadow_cache(job, thread);
@@ -416,16 +420,22 @@ static void RF_KNAME(pixels)(const RfKernelJob *job, RfTile tile, int thread, in
                     const double *s = pos_uv[j];
                     ps.k = (uint32_t)k;
                     ps.lens_uv = through_lens ? lens_uv[j] : NULL;
+                    double px = x + s[0], py = y + s[1], w = 1.0;
+                    if (!job->filter_box) {
+                        double r = job->filter.radius, ox = (2.0 * s[0] - 1.0) * r, oy = (2.0 * s[1] - 1.0) * r;
+                        w = rf_filter_eval(&job->filter, ox, oy);
+                        px = x + 0.5 + ox, py = y + 0.5 + oy;
+                    }
+                    RfRgb c = job->background;
+                    if (missed)
+                        st->primary_rays++;
+                    else
+                        c = RF_KNAME(camera_sample)(job, px, py, &ps, st, shadow_cache);
+                    sum = rf_rgb_add(sum, c);
                     if (job->filter_box) {
-                        RfRgb c = RF_KNAME(camera_sample)(job, x + s[0], y + s[1], &ps, st, shadow_cache);
-                        sum = rf_rgb_add(sum, c);
                         if (job->variance) /* refray diff --stat: the samples' spread */
                             sq = rf_rgb_add(sq, rf_rgb_mul(c, c));
                     } else {
-                        double r = job->filter.radius, ox = (2.0 * s[0] - 1.0) * r, oy = (2.0 * s[1] - 1.0) * r;
-                        double w = rf_filter_eval(&job->filter, ox, oy);
-                        RfRgb c = RF_KNAME(camera_sample)(job, x + 0.5 + ox, y + 0.5 + oy, &ps, st, shadow_cache);
-                        sum = rf_rgb_add(sum, c);
                         wsum_c = rf_rgb_add(wsum_c, rf_rgb_scale(c, w));
                         wsum += w;
                     }
@@ -450,11 +460,15 @@ static int RF_KNAME(tile)(void *ctx, RfTile tile, int thread)
 {
     const RfKernelJob *job = ctx;
     int n = RF_ON(RF_K_JITTER) ? job->samples : 1;
-    if (RF_KPARTS != RF_K_ALL && job->cull && rf_kernel_tile_misses(job, tile)) { /* cull: 1 spp or the box filter */
-        rf_kernel_background(job, &job->per_thread[thread], tile, n);
+    int plain = n == 1 || job->filter_box; /* the samples' positions do not enter the pixel's value */
+    if (RF_KPARTS != RF_K_ALL && job->cull && rf_kernel_tile_misses(job, tile, plain ? 1.0 : job->filter.radius + 1.0)) {
+        if (plain)
+            rf_kernel_background(job, &job->per_thread[thread], tile, n);
+        else /* a filter's weights: the sample loop, without the rays */
+            RF_KNAME(pixels)(job, tile, thread, n, 1);
         job->per_thread[thread].background_tiles++;
     } else
-        RF_KNAME(pixels)(job, tile, thread, n);
+        RF_KNAME(pixels)(job, tile, thread, n, 0);
     return 0;
 }
 

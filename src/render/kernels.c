@@ -67,13 +67,15 @@ static void rf_kernel_store(const RfKernelJob *job, RfRenderStats *st, int x, in
 }
 
 /* 1 when no camera ray of the tile can hit anything (a pinhole camera): the pyramid from the
- * eye through the tile's pixels, widened by a pixel on each side (which holds every ray as
- * rounded, by a wide margin), reaches no leaf of the BVH (rf_tracer_cone_empty). */
-static int rf_kernel_tile_misses(const RfKernelJob *job, RfTile tile)
+ * eye through the tile's pixels, widened by `margin` pixels on each side, reaches no leaf of the
+ * BVH (rf_tracer_cone_empty). A margin of 1 holds every ray through the tile's pixels as rounded,
+ * by a wide margin; a filter of radius r draws its samples up to r from the pixel's centre, so
+ * r + 1 holds them. */
+static int rf_kernel_tile_misses(const RfKernelJob *job, RfTile tile, double margin)
 {
     const RfCamera *cam = &job->camera;
-    const double xs[4] = {tile.x0 - 1.0, tile.x1 + 1.0, tile.x1 + 1.0, tile.x0 - 1.0};
-    const double ys[4] = {tile.y0 - 1.0, tile.y0 - 1.0, tile.y1 + 1.0, tile.y1 + 1.0};
+    const double xs[4] = {tile.x0 - margin, tile.x1 + margin, tile.x1 + margin, tile.x0 - margin};
+    const double ys[4] = {tile.y0 - margin, tile.y0 - margin, tile.y1 + margin, tile.y1 + margin};
     RfVec3 d[4], mid = rf_vec3(0.0, 0.0, 0.0), side[4];
     for (int i = 0; i < 4; i++) {
         d[i] = rf_camera_to_world(cam, rf_camera_plane_point(cam, xs[i], ys[i]));

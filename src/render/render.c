@@ -417,8 +417,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
         if (!job->motion)
             st = RF_ERR_NOMEM;
     }
-    job->cull = !(cam->aperture_radius > 0.0) && !job->moving && !opt->trace &&
-                (res.samples == 1 || job->filter_box) && rf_kernel_rgb_valid(job->background);
+    job->cull = !(cam->aperture_radius > 0.0) && !job->moving && !opt->trace && rf_kernel_rgb_valid(job->background);
     if (st == RF_OK) {
         stats->accel_bytes = rf_tracer_bytes(tracer);
         job->tracer = tracer;
