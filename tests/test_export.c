@@ -35,7 +35,10 @@ static double num_after(const char *text, const char *key, int nth)
     return x;
 }
 
-static int export_text(const char *text, RfExportFormat f, int lossy, RfExport *ex, RfStatus *st)
+/* export_text's flags: 1 --lossy, 2 --two-sided */
+enum { EX_LOSSY = 1, EX_TWO_SIDED = 2 };
+
+static int export_text(const char *text, RfExportFormat f, int flags, RfExport *ex, RfStatus *st)
 {
     RfScene s;
     char err[512];
@@ -47,7 +50,8 @@ static int export_text(const char *text, RfExportFormat f, int lossy, RfExport *
     o.format = f;
     o.source = "t.rf";
     o.output = "/tmp/out.x";
-    o.lossy = lossy;
+    o.lossy = (flags & EX_LOSSY) != 0;
+    o.two_sided = (flags & EX_TWO_SIDED) != 0;
     *st = rf_scene_export(&s, &o, ex);
     rf_scene_free(&s);
     return 1;
@@ -206,7 +210,7 @@ static void t_export_pbrt_numbers(void)
     RfExport ex;
     RfStatus st;
     /* pbrt-v4's dielectric and diffuse only: the mirror and the blend are noted */
-    if (!export_text(SCENE, RF_EXPORT_PBRT, 1, &ex, &st))
+    if (!export_text(SCENE, RF_EXPORT_PBRT, EX_LOSSY, &ex, &st))
         return;
     RF_CHECK(st == RF_OK && ex.file_count == 1);
     if (ex.file_count == 1) {
@@ -225,7 +229,7 @@ static void t_export_pbrt_numbers(void)
     if (!export_text("camera eye 0 0 5  target 0 0 0  up 0 1 0  fov 40\nlight point 0 3 3\n"
                      "material p  kd 0.5  ks 0.5  shininess 20\ntriangle 0 0 0  1 0 0  0 1 0\n"
                      "triangle 0 0 1  1 0 1  0 1 1\ntriangle 0 0 2  1 0 2  0 1 2\n",
-                     RF_EXPORT_PBRT, 1, &ex, &st))
+                     RF_EXPORT_PBRT, EX_LOSSY, &ex, &st))
         return;
     int notes = 0;
     for (const char *n = ex.notes; n && (n = strstr(n, "material 'p': Phong highlight")) != NULL; n++)
@@ -278,7 +282,7 @@ static void t_export_refusals(void)
         rf_test_checks++;
         rf_export_free(&ex);
         /* --lossy writes it anyway, the note kept */
-        if (!export_text(text, cases[i].f, 1, &ex, &st))
+        if (!export_text(text, cases[i].f, EX_LOSSY, &ex, &st))
             continue;
         if (!(st == RF_OK && ex.file_count >= 1 && ex.notes && strstr(ex.notes, cases[i].note)))
             rf_test_fail(__FILE__, __LINE__, "case %zu with --lossy: status %d, %zu files, notes '%s'", i, (int)st,
@@ -290,24 +294,15 @@ static void t_export_refusals(void)
     static const char inside[] = "camera eye 0 0 5  target 0 0 0  up 0 1 0  fov 40\nlight point 0 3 3\n"
                                  "material w kd 1\nsphere 0 0 0 1  inside\n";
     static const RfExportFormat formats[] = {RF_EXPORT_MITSUBA, RF_EXPORT_PBRT, RF_EXPORT_POV};
-    RfScene s;
-    char err[512];
-    if (rf_scene_read_rf("t.rf", inside, strlen(inside), &s, err, sizeof err) != RF_OK) {
-        rf_test_fail(__FILE__, __LINE__, "scene: %s", err);
-        return;
-    }
     for (size_t f = 0; f < 3; f++) {
-        RfExportOptions o = rf_export_options_default();
         RfExport ex;
-        o.format = formats[f];
-        o.source = "t.rf";
-        o.output = "/tmp/out.x";
-        o.two_sided = 1;
-        RF_CHECK_EQ_INT(rf_scene_export(&s, &o, &ex), RF_OK);
+        RfStatus st;
+        if (!export_text(inside, formats[f], EX_TWO_SIDED, &ex, &st))
+            continue;
+        RF_CHECK_EQ_INT(st, RF_OK);
         RF_CHECK(!ex.notes || !strstr(ex.notes, "inside-only"));
         rf_export_free(&ex);
     }
-    rf_scene_free(&s);
 }
 
 /* Quadrics under non-similarity transforms (scenes/crosscheck/placed.rf's kind): POV-Ray and pbrt
@@ -402,7 +397,7 @@ static void t_export_placed_quadrics(void)
     }
     rf_export_free(&ex);
     /* Mitsuba: refused without --lossy (the earlier case of t_export_refusals), a mesh with it */
-    if (!export_text(PLACED, RF_EXPORT_MITSUBA, 1, &ex, &st))
+    if (!export_text(PLACED, RF_EXPORT_MITSUBA, EX_LOSSY, &ex, &st))
         return;
     RF_CHECK(st == RF_OK && ex.file_count == 3);
     if (ex.file_count == 3) {
