@@ -274,21 +274,25 @@ static void t_install_pkgconfig_man_completion(void)
              dir, dir);
     if ((out = run_ok(cmd, __LINE__)))
         RF_CHECK_STR(out, "render\n--sampler --samples\nsobol\nsobol\negl\nfresnel\ndiff\nrefray\n");
-    /* uninstall: every file and link gone */
-    snprintf(cmd, sizeof cmd, "sh tools/install.sh uninstall '' '%s/usr' '%s/usr/lib' && find '%s/usr' ! -type d | wc -l",
+    /* uninstall: every file, link and folder install made gone (the prefix too: install made it) */
+    snprintf(cmd, sizeof cmd, "sh tools/install.sh uninstall '' '%s/usr' '%s/usr/lib' && { test -e '%s/usr' || echo gone; }",
              dir, dir, dir);
     if ((out = run_ok(cmd, __LINE__)))
-        RF_CHECK(strstr(out, "removed ") == out && strstr(out, "\n0\n") != NULL);
+        RF_CHECK(strstr(out, "removed ") == out && strstr(out, "\ngone\n") != NULL);
     /* DESTDIR: staged under it, the .pc names the real prefix; uninstall with it */
     snprintf(cmd, sizeof cmd,
              "%s sh tools/install.sh install '%s' '%s/stage' /opt/refray /opt/refray/lib >/dev/null && "
              "sed -n 's/^prefix=//p' '%s/stage/opt/refray/lib/pkgconfig/refray.pc' && "
              "test -x '%s/stage/opt/refray/bin/refray' && test -f '%s/stage/opt/refray/share/refray/refray.mk' && "
+             "touch '%s/stage/opt/refray/lib/other.so' && "
              "sh tools/install.sh uninstall '%s/stage' /opt/refray /opt/refray/lib >/dev/null && "
-             "find '%s/stage' ! -type d | wc -l",
-             env, b, dir, dir, dir, dir, dir, dir);
+             "find '%s/stage' | sort",
+             env, b, dir, dir, dir, dir, dir, dir, dir);
+    /* a file of someone else's keeps its folders; the staging folder is not install's to remove */
+    snprintf(want, sizeof want, "/opt/refray\n%s/stage\n%s/stage/opt\n%s/stage/opt/refray\n%s/stage/opt/refray/lib\n"
+             "%s/stage/opt/refray/lib/other.so\n", dir, dir, dir, dir, dir);
     if ((out = run_ok(cmd, __LINE__)))
-        RF_CHECK_STR(out, "/opt/refray\n0\n");
+        RF_CHECK_STR(out, want);
     rm_tree(dir);
 }
 

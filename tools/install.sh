@@ -5,8 +5,9 @@
 #   tools/install.sh uninstall DESTDIR PREFIX LIBDIR
 # install copies the commands, the static and shared library, the headers, refray.pc (written
 # here with the real prefix), the man pages, the bash completion and refray.mk, and lists every
-# file and link it made in PREFIX/share/refray/installed-files; uninstall removes exactly those
-# (and then the list and the folders it left empty), whatever the source tree holds by then.
+# file, link and folder it made in PREFIX/share/refray/installed-files (a folder with a trailing
+# /); uninstall removes exactly those (a folder only when nothing else is in it by then),
+# whatever the source tree holds by then.
 # Environment: RF_VERSION (the library's version), RF_PKGS (the pkg-config modules the library
 # links against: its Requires.private).
 set -eu
@@ -31,9 +32,27 @@ refresh_ld_cache() {
     fi
 }
 
+# missing DIR: the folders on the way to DIR (under DESTDIR) that do not exist yet, outermost
+# first, each with a trailing / (how the list tells a folder from a file)
+missing() {
+    m= d=$1
+    while [ -n "$d" ] && [ "$d" != / ] && [ ! -d "$destdir$d" ]; do
+        m="$d/
+$m"
+        d=$(dirname "$d")
+    done
+    printf '%s' "$m"
+}
+# folder DIR: makes DIR (under DESTDIR) and records the folders it made, so that uninstall
+# removes those and no other
+folder() {
+    m=$(missing "$1")
+    install -d "$destdir$1"
+    [ -z "$m" ] || echo "$m" >> "$list.tmp"
+}
 # put FILE MODE DIR [NAME]: copies FILE into DIR (under DESTDIR) and records it
 put() {
-    install -d "$destdir$3"
+    folder "$3"
     install -m "$2" "$1" "$destdir$3/${4:-$(basename "$1")}"
     echo "$3/${4:-$(basename "$1")}" >> "$list.tmp"
 }
@@ -45,8 +64,10 @@ link() {
 
 case $mode in
 install)
+    m=$(missing "$prefix/share/refray") # the list's own folder, made before the list
     install -d "$root/share/refray"
     : > "$list.tmp"
+    [ -z "$m" ] || echo "$m" >> "$list.tmp"
     for b in refray refray-raster refray-verify refray-view; do
         put "$build/$b" 755 "$prefix/bin"
     done
@@ -59,7 +80,7 @@ install)
         put "$h" 644 "$prefix/include/refray"
     done
     # pkg-config: Requires.private and Libs.private serve `pkg-config --static` (librefray.a)
-    install -d "$destdir$libdir/pkgconfig"
+    folder "$libdir/pkgconfig"
     cat > "$build/refray.pc" <<EOF
 prefix=$prefix
 libdir=$libdir
@@ -86,7 +107,7 @@ EOF
     put tools/refray.mk 644 "$prefix/share/refray"
     echo "$prefix/share/refray/installed-files" >> "$list.tmp"
     mv "$list.tmp" "$list"
-    echo "installed $(wc -l < "$list") files under $root (list: $list)"
+    echo "installed $(grep -vc '/$' "$list") files under $root (list: $list)"
     refresh_ld_cache
     ;;
 uninstall)
@@ -94,16 +115,25 @@ uninstall)
         echo "refray: nothing to uninstall: $list does not exist" >&2
         exit 1
     fi
+    # the folders install made, innermost first (read now: the list is among the files removed)
+    folders=$(grep '/$' "$list" | sed -n '1!G;h;$p')
     n=0
     while IFS= read -r f; do
+        case $f in
+        */) continue ;; # a folder: below, once its files are gone
+        esac
         rm -f "$destdir$f"
         n=$((n + 1))
-        # folders refray made and left empty go too (never the prefix's own bin, lib, ...)
+        # refray's own folders go when empty (a list from before folders were recorded)
         d=$(dirname "$f")
         case $d in
         */include/refray | */share/refray) rmdir "$destdir$d" 2>/dev/null || true ;;
         esac
     done < "$list"
+    # then those folders; one that holds something else by now stays
+    printf '%s\n' "$folders" | while IFS= read -r d; do
+        [ -z "$d" ] || rmdir "$destdir$d" 2>/dev/null || true
+    done
     echo "removed $n files under $root"
     refresh_ld_cache
     ;;
