@@ -6,6 +6,7 @@
 #include <errno.h>
 #include <math.h>
 #include <setjmp.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -64,10 +65,21 @@ static void encode_row(const RfImage *img, int y, RfPngOptions opt, unsigned cha
 {
     const float *src = img->data + (size_t)y * (size_t)img->width * (size_t)img->channels;
     size_t i, n = (size_t)img->width * (size_t)img->channels;
+    uint32_t last_bits = 0;
+    long last_q = -1; /* the code of the last value encoded with the curve (-1: none yet) */
     for (i = 0; i < n; i++) {
         int alpha = img->channels == 4 && i % 4 == 3; /* PNG alpha is linear: no curve */
-        double v = alpha ? src[i] : rf_io_encode_value(src[i], opt);
-        long q = rf_quantize(v, opt.bits); /* clamps to [0,1] and rounds */
+        uint32_t bits;
+        memcpy(&bits, &src[i], sizeof bits);
+        long q;
+        if (!alpha && last_q >= 0 && bits == last_bits) {
+            q = last_q; /* the same value as the last: its code again, without the curve's pow */
+        } else {
+            double v = alpha ? src[i] : rf_io_encode_value(src[i], opt);
+            q = rf_quantize(v, opt.bits); /* clamps to [0,1] and rounds */
+            if (!alpha)
+                last_bits = bits, last_q = q;
+        }
         if (opt.bits == 16) {
             row[2 * i] = (unsigned char)(q >> 8);
             row[2 * i + 1] = (unsigned char)(q & 0xff);
