@@ -119,7 +119,7 @@ static RfVec3 place_normal(const Place *pl, RfVec3 n)
 }
 
 static int add_triangle(Geometry *g, const RfScene *s, const RfPrimitive *p, const int *k, RfVec3 n,
-                        const Place *pl)
+                        const Place *pl, int sides)
 {
     if (g->ntri == g->tri_cap) {
         size_t cap = g->tri_cap ? 2 * g->tri_cap : 1024;
@@ -150,7 +150,7 @@ static int add_triangle(Geometry *g, const RfScene *s, const RfPrimitive *p, con
     }
     d[9] = n.x, d[10] = n.y, d[11] = n.z;
     ii[0] = p->material;
-    ii[1] = (int)(p->flags & (RF_PRIM_TWO_SIDED | RF_PRIM_INSIDE));
+    ii[1] = sides;
     ii[2] = smooth;
     ii[3] = 0;
     g->ntri++;
@@ -164,7 +164,15 @@ typedef struct {
     double near;
     int *tris, cap;
     size_t quad_cap;
+    int two_sided; /* RfRasterOptions.two_sided */
 } Builder;
+
+/* The shaders' flags word of p (1: seen from both sides, 2: only from inside): the scene's, or
+ * both sides for every surface with RfRasterOptions.two_sided, as the tracer's option does. */
+static int side_flags(const Builder *b, const RfPrimitive *p)
+{
+    return b->two_sided ? (int)RF_PRIM_TWO_SIDED : (int)(p->flags & (RF_PRIM_TWO_SIDED | RF_PRIM_INSIDE));
+}
 
 static RfStatus add_polygon(Builder *b, const RfPrimitive *p, const Place *pl)
 {
@@ -186,7 +194,7 @@ static RfStatus add_polygon(Builder *b, const RfPrimitive *p, const Place *pl)
         RfVec3 n = rf_vec3_normalize(rf_vec3_cross(rf_vec3_sub(v1, v0), rf_vec3_sub(v2, v0)));
         if (pl->instanced)
             n = rf_vec3_normalize(place_normal(pl, n));
-        if (!add_triangle(b->g, b->s, p, t, n, pl))
+        if (!add_triangle(b->g, b->s, p, t, n, pl, side_flags(b, p)))
             return RF_ERR_NOMEM;
     }
     return RF_OK;
@@ -249,7 +257,7 @@ static RfStatus add_quadric(Builder *b, const RfPrimitive *p, const Place *pl)
             for (int c = 0; c < 3; c++)
                 d[26 + 3 * r + c] = pl->nmat.m[r][c];
     }
-    q[1] = (int)(p->flags & (RF_PRIM_TWO_SIDED | RF_PRIM_INSIDE));
+    q[1] = side_flags(b, p);
     q[2] = p->material;
     /* full screen for planes, and when the near plane could cut the (padded) box: the box would
      * lose the fragments in front of the eye */
@@ -302,14 +310,14 @@ static RfStatus emit(Builder *b, size_t first, size_t count, int world, const Pl
     return st;
 }
 
-static RfStatus build_geometry(const RfScene *s, Geometry *g, RfVec3 eye, double near)
+static RfStatus build_geometry(const RfScene *s, Geometry *g, RfVec3 eye, double near, int two_sided)
 {
     Builder b;
     Place world;
     memset(g, 0, sizeof *g);
     memset(&b, 0, sizeof b);
     memset(&world, 0, sizeof world);
-    b.s = s, b.g = g, b.eye = eye, b.near = near;
+    b.s = s, b.g = g, b.eye = eye, b.near = near, b.two_sided = two_sided;
     RfStatus st = emit(&b, 0, s->prim_count, 1, &world, 0);
     free(b.tris);
     return st;
@@ -461,16 +469,10 @@ RfStatus rf_raster_render(const RfScene *s, const RfRasterOptions *opt,
     vw.near = near_plane(s, &vw);
     if (!gl_load(&gl, proc, proc_ctx, err, errsz))
         return RF_ERR_DOMAIN;
-    if ((st = build_geometry(s, &g, vw.eye, vw.near)) != RF_OK) {
+    if ((st = build_geometry(s, &g, vw.eye, vw.near, opt->two_sided)) != RF_OK) {
         free_geometry(&g);
         snprintf(err, errsz, st == RF_ERR_NOMEM ? "out of memory" : "bad instance in the scene graph");
         return st;
-    }
-    if (opt->two_sided) { /* the shaders' flags word: seen from both sides, the scene's sides aside */
-        for (size_t i = 0; i < g.ntri; i++)
-            g.trii[4 * i + 1] = RF_PRIM_TWO_SIDED;
-        for (size_t i = 0; i < g.nquad; i++)
-            g.quai[4 * i + 1] = RF_PRIM_TWO_SIDED;
     }
     if ((st = rf_image_alloc(color, vw.width, vw.height, 3)) != RF_OK ||
         (depth && (st = rf_image_alloc(depth, vw.width, vw.height, 1)) != RF_OK)) {

@@ -64,10 +64,8 @@ link() {
 
 case $mode in
 install)
-    m=$(missing "$prefix/share/refray") # the list's own folder, made before the list
-    install -d "$root/share/refray"
-    : > "$list.tmp"
-    [ -z "$m" ] || echo "$m" >> "$list.tmp"
+    rm -f "$list.tmp" # one that a run stopped half-way left
+    folder "$prefix/share/refray" # the list's own folder: its first lines
     for b in refray refray-raster refray-verify refray-view; do
         put "$build/$b" 755 "$prefix/bin"
     done

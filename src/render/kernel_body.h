@@ -378,9 +378,9 @@ static RfRgb RF_KNAME(camera_sample)(const RfKernelJob *job, double px, double p
 /* The value of a pixel from its samples (§3.9): the box filter's mean, or a filter's weighted
  * mean over samples drawn in [-radius, radius]^2 around the centre. One sample: the centre.
  * missed (more than one sample, a filter wider than the pixel): no camera ray of the tile can hit
- * anything (rf_kernel_tile_misses), so every sample is the background, counted but not traced; the positions, weights and sums stay those of a traced
- * tile, so the pixels get the same bits (for the box filter and one sample rf_kernel_background
- * does it without the positions). */
+ * anything (rf_kernel_tile_misses), so every sample is the background, counted but not traced;
+ * the positions, weights and sums stay those of a traced tile, so the pixels get the same bits
+ * (for the box filter and one sample rf_kernel_background does it without the positions). */
 static void RF_KNAME(pixels)(const RfKernelJob *job, RfTile tile, int thread, int n, int missed)
 {
     RfRenderStats *st = &job->per_thread[thread];

@@ -270,6 +270,8 @@ void rf__ex_check_hither(RfExCtx *c)
 const RfPrimitive *rf__ex_world_prim(const RfScene *s, const RfPrimitive *p, const RfInstance **placement)
 {
     *placement = NULL;
+    if (p->flags & RF_PRIM_IN_OBJECT) /* written with its placement, if at all */
+        return NULL;
     if (p->type != RF_PRIM_INSTANCE)
         return p;
     const RfInstance *in = &s->instances[p->u.instance];
@@ -291,8 +293,7 @@ unsigned char *rf__ex_used_materials(RfExCtx *c)
     }
     for (size_t i = 0; i < s->prim_count; i++) {
         const RfInstance *placement;
-        const RfPrimitive *p = (s->prims[i].flags & RF_PRIM_IN_OBJECT) ? NULL
-                                                                        : rf__ex_world_prim(s, &s->prims[i], &placement);
+        const RfPrimitive *p = rf__ex_world_prim(s, &s->prims[i], &placement);
         if (p && p->material >= 0 && (size_t)p->material < s->material_count)
             used[p->material] |= (p->flags & RF_PRIM_TWO_SIDED) || c->o->two_sided ? 2 : 1;
     }
@@ -308,8 +309,7 @@ void rf__ex_note_one_sided(RfExCtx *c, const char *back)
         return;
     for (size_t i = 0; i < s->prim_count; i++) {
         const RfInstance *placement;
-        const RfPrimitive *p = (s->prims[i].flags & RF_PRIM_IN_OBJECT) ? NULL
-                                                                        : rf__ex_world_prim(s, &s->prims[i], &placement);
+        const RfPrimitive *p = rf__ex_world_prim(s, &s->prims[i], &placement);
         /* a sphere's back is seen only from inside it */
         if (p && !(p->flags & RF_PRIM_TWO_SIDED) && p->type != RF_PRIM_SPHERE && !n++)
             first = p->loc;

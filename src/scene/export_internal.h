@@ -73,10 +73,11 @@ void rf__ex_common_checks(RfExCtx *c, int area_ok, int lens_ok);
 /* A note when the camera's near plane (hither) may cut the scene: POV-Ray and pbrt have none. */
 void rf__ex_check_hither(RfExCtx *c);
 
-/* What a world primitive p of the flattened scene writes: p itself (*placement NULL), or for a
- * quadric under a non-similarity transform (rf_scene_flatten's RF_FLATTEN_PLACED_QUADRICS: an
- * instance of a one-primitive object) that primitive in its object's space, with *placement
- * the instance that places it (to_world, normal_to_world). NULL for nothing to write (an instance of anything else). */
+/* What primitive p of the flattened scene writes: p itself (*placement NULL), or for a quadric
+ * under a non-similarity transform (rf_scene_flatten's RF_FLATTEN_PLACED_QUADRICS: an instance
+ * of a one-primitive object) that primitive in its object's space, with *placement the instance
+ * that places it (to_world, normal_to_world). NULL for nothing to write on its own: a primitive
+ * inside an object (its instance writes it), an instance of anything else. */
 const RfPrimitive *rf__ex_world_prim(const RfScene *s, const RfPrimitive *p, const RfInstance **placement);
 
 /* Which materials the world's primitives use, per material: bit 1 by a one-sided primitive, bit 2

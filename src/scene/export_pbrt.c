@@ -215,8 +215,7 @@ void rf__export_pbrt(RfExCtx *c)
         return;
     }
     for (size_t i = 0; i < s->prim_count; i++)
-        if (!(s->prims[i].flags & RF_PRIM_IN_OBJECT))
-            shape(c, &s->prims[i], 1e3 * extent, noted);
+        shape(c, &s->prims[i], 1e3 * extent, noted);
     free(noted);
     rf__ex_note_one_sided(c, "shades it");
 }

@@ -263,8 +263,7 @@ void rf__export_pov(RfExCtx *c)
     PovTally t;
     memset(&t, 0, sizeof t);
     for (size_t i = 0; i < s->prim_count; i++)
-        if (!(s->prims[i].flags & RF_PRIM_IN_OBJECT))
-            write_prim(c, &s->prims[i], &t);
+        write_prim(c, &s->prims[i], &t);
     rf__ex_note_one_sided(c, "shades it");
     if (t.glass)
         rf__ex_note(c, t.first_glass, 1, "%zu transmitting primitives other than spheres (the first here): POV-Ray "

@@ -325,9 +325,12 @@ static RfStatus emit_placed(const RfPrimitive *p, const Xf *x, RfScene *out, cha
     in.flags = RF_PRIM_TWO_SIDED; /* an instance has no sides: its object's primitive has */
     in.material = p->material;    /* unused, as a reader's instance's */
     in.loc = p->loc;
-    if ((st = rf_scene_add_instance(out, object, x->m, &in.u.instance)) != RF_OK)
-        return rf__msgf(msg, msgsz, st, st == RF_ERR_SINGULAR ? "the placement of the %s of line %d is singular"
-                                                               : "out of memory", rf_prim_type_name(p->type), p->loc.line);
+    st = rf_scene_add_instance(out, object, x->m, &in.u.instance);
+    if (st == RF_ERR_SINGULAR)
+        return rf__msgf(msg, msgsz, st, "the placement of the %s of line %d is singular", rf_prim_type_name(p->type),
+                        p->loc.line);
+    if (st)
+        return rf__msgf(msg, msgsz, st, "out of memory");
     return rf_scene_add_primitive(out, &in, msg, msgsz);
 }
 
