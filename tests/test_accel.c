@@ -4,6 +4,7 @@
  * the same primitive, t, point and normals for nearest hits and the same occlusion answers,
  * ray by ray, and the same images. */
 #include <glob.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -125,6 +126,134 @@ static void t_accel_scenes_vs_brute_force(void)
     }
     globfree(&g);
     RF_CHECK(scenes >= 18);
+}
+
+/* rf_tracer_intersect4 (camera rays in groups, issue 11) gives each lane what
+ * rf_tracer_intersect gives its ray, bit for bit: on every shipped scene, with the vector and
+ * scalar kernels, brute force and every side seen (two_sided), for groups of four of the rays
+ * above with every pattern of idle lanes and start distances of 0 or beyond the first hit. */
+static void t_accel_groups_vs_one_ray(void)
+{
+    glob_t g;
+    int scenes = 0;
+    long lanes = 0;
+    rf_test_shipped_scenes(&g, 1);
+    for (size_t i = 0; i < g.gl_pathc; i++) {
+        const char *path = g.gl_pathv[i];
+        RfScene s;
+        char err[512];
+        RfTracer *t[KINDS + 1] = {NULL, NULL, NULL, NULL};
+        RF_CHECK_EQ_INT(rf_scene_load(path, NULL, &s, err, sizeof err), RF_OK);
+        RfTracerOptions two = rf_tracer_options_default();
+        two.two_sided = 1;
+        if (make_tracers(&s, t) != RF_OK || rf_tracer_create_opts(&s, &two, &t[KINDS]) != RF_OK) {
+            rf_test_fail(__FILE__, __LINE__, "%s: tracers", path);
+            continue;
+        }
+        RfTriangleCount tc = rf_scene_triangle_count(&s);
+        long work = (long)(tc.rendered + s.prim_count) + 1;
+        int max = (int)(1500000L / work);
+        max = max > 1200 ? 1200 : max < 16 ? 16 : max;
+        RfRay *rays = malloc(sizeof *rays * (size_t)max);
+        RfTestRng rng = {99 + i};
+        int n = scene_rays(&s, t[VECTOR], &rng, rays, max), bad = 0;
+        for (int m = 0; m <= KINDS && !bad; m++)
+            for (int k0 = 0; k0 + 4 <= n && !bad; k0 += 4) {
+                unsigned active = (unsigned)(k0 / 4) % 15u + 1u; /* 1 .. 15 in turn */
+                double t_min[4];
+                RfSurfaceHit one[4], four[4];
+                int p[4];
+                for (int l = 0; l < 4; l++) {
+                    t_min[l] = 0.0;
+                    if ((k0 / 4 + l) % 3 == 0) { /* from just beyond the first hit: the far side */
+                        RfSurfaceHit h;
+                        if (rf_tracer_intersect(t[m], &rays[k0 + l], 0, HUGE_VAL, &h) >= 0)
+                            t_min[l] = h.t * (1.0 + 1e-9);
+                    }
+                    p[l] = rf_tracer_intersect(t[m], &rays[k0 + l], t_min[l], HUGE_VAL, &one[l]);
+                }
+                unsigned hit = rf_tracer_intersect4(t[m], &rays[k0], active, t_min, four);
+                for (int l = 0; l < 4; l++) {
+                    int on = (active >> l) & 1, got = on && ((hit >> l) & 1) ? four[l].prim : -1;
+                    if (!on)
+                        continue;
+                    lanes++;
+                    rf_test_checks++;
+                    if (((hit >> l) & 1) != (p[l] >= 0) || !same_hit(p[l], &one[l], got, &four[l]) ||
+                        (p[l] >= 0 && four[l].scale != one[l].scale)) {
+                        rf_test_fail(__FILE__, __LINE__, "%s tracer %d ray %d lane %d: one ray prim %d t %.17g, group prim %d t %.17g",
+                                     path, m, k0 + l, l, p[l], p[l] >= 0 ? one[l].t : 0.0, got, got >= 0 ? four[l].t : 0.0);
+                        bad++;
+                    }
+                }
+                if (hit & ~active) {
+                    rf_test_fail(__FILE__, __LINE__, "%s: idle lanes reported hit (%x of %x)", path, hit, active);
+                    bad++;
+                }
+            }
+        free(rays);
+        for (int m = 0; m <= KINDS; m++)
+            rf_tracer_free(t[m]);
+        rf_scene_free(&s);
+        scenes++;
+    }
+    globfree(&g);
+    RF_CHECK(scenes >= 18);
+    RF_CHECK(lanes > 25000);
+}
+
+/* rf_sphere_roots4 against rf_sphere_roots, every output bit for bit: random rays at spheres
+ * near and far, and the rare cases the lanes hand back (a tangent, q = 0 at an origin on the
+ * sphere, a zero direction, NaN and infinite inputs) mixed into groups with ordinary rays. */
+static void t_accel_sphere_lanes(void)
+{
+    RfTestRng rng = {4242};
+    const RfSphere spheres[3] = {{{0.1, 1, -1.3}, 1.0}, {{0, 0, 0}, 1.0}, {{1e6, -3e5, 2e5}, 0.5}};
+    const RfRay odd[6] = {
+        {{1, 0, -5}, {0, 0, 1}},          /* tangent: D/4 = 0 */
+        {{1, 0, 0}, {0, 0, 1}},           /* on the sphere, tangent: q = 0 */
+        {{0, 0, -5}, {0, 0, 0}},          /* a = 0 */
+        {{NAN, 0, -5}, {0, 0, 1}},        /* NaN */
+        {{0, 0, -5}, {0, INFINITY, 1}},   /* an infinite direction */
+        {{0.5, 0.5, 0}, {0, 0, 1}},       /* inside */
+    };
+    long same = 0, real = 0;
+    for (int trial = 0; trial < 20000; trial++) {
+        const RfSphere *sp = &spheres[trial % 3];
+        RfRay rays[4];
+        RfRay4 r4;
+        for (int l = 0; l < 4; l++) {
+            if (trial % 7 == 0 && l == trial % 4) {
+                rays[l] = odd[(trial / 7) % 6];
+            } else {
+                RfVec3 o = rf_vec3(rf_test_uniform(&rng, -8, 8), rf_test_uniform(&rng, -8, 8), rf_test_uniform(&rng, 4, 9));
+                RfVec3 aim = rf_vec3_add(sp->center, rf_vec3(rf_test_uniform(&rng, -1.2, 1.2) * sp->radius,
+                                                             rf_test_uniform(&rng, -1.2, 1.2) * sp->radius,
+                                                             rf_test_uniform(&rng, -1.2, 1.2) * sp->radius));
+                RfVec3 d = rf_vec3_sub(aim, o);
+                rays[l] = rf_ray(o, trial % 2 ? rf_vec3_normalize(d) : d);
+            }
+            rf_ray4_set(&r4, l, &rays[l]);
+        }
+        RfSphereRoots got[4];
+        unsigned ok = rf_sphere_roots4(&r4, rays, sp, got);
+        for (int l = 0; l < 4; l++) {
+            RfSphereRoots want;
+            int w = rf_sphere_roots(&rays[l], sp, &want);
+            rf_test_checks++;
+            if (w != (int)((ok >> l) & 1) ||
+                (w && (memcmp(want.t, got[l].t, sizeof want.t) != 0 || memcmp(&want.v, &got[l].v, sizeof want.v) != 0 ||
+                       memcmp(&want.sq, &got[l].sq, sizeof want.sq) != 0 || memcmp(&want.a, &got[l].a, sizeof want.a) != 0))) {
+                rf_test_fail(__FILE__, __LINE__, "trial %d lane %d: one ray %d t %.17g %.17g, lanes %d t %.17g %.17g", trial, l,
+                             w, w ? want.t[0] : 0.0, w ? want.t[1] : 0.0, (int)((ok >> l) & 1), got[l].t[0], got[l].t[1]);
+                return;
+            }
+            same++;
+            real += w;
+        }
+    }
+    RF_CHECK_EQ_INT(same, 80000);
+    RF_CHECK(real > 30000 && real < 79000); /* hits and misses both */
 }
 
 /* Small renders of every shipped scene: the scalar kernels and brute force give the image of
@@ -342,5 +471,7 @@ const RfTest rf_tests_accel[] = {
     {"accel_nonconvex_watertight", t_accel_nonconvex_watertight},
     {"accel_scenes_vs_brute_force", t_accel_scenes_vs_brute_force},
     {"accel_images_identical", t_accel_images},
+    {"accel_groups_vs_one_ray", t_accel_groups_vs_one_ray},
+    {"accel_sphere_lanes", t_accel_sphere_lanes},
     RF_TEST_END,
 };

@@ -173,6 +173,13 @@ int rf_bvh_nearest(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best
  * shadow rays, which cross every surface in turn). */
 int rf_bvh_nearest_any_side(const RfBvh *bvh, RfBvhRay *ray, double t_min, RfBvhHit *best,
                             RfBvhItemFn fn, void *ctx);
+/* rf_bvh_nearest (any_side = 0) or rf_bvh_nearest_any_side (1) for the rays of the lanes in
+ * active (bit l: ray[l], t_min[l], best[l], ctx[l]) in one walk: a node is visited once for the
+ * lanes that enter it, a sphere tested for all of them at once (rf_sphere_roots4). Each lane
+ * ends with what its one-ray query gives (the (t, key) rule does not depend on the order of the
+ * walk). Returns the lanes whose best changed. */
+unsigned rf_bvh_nearest4(const RfBvh *bvh, RfBvhRay ray[4], unsigned active, const double t_min[4],
+                         RfBvhHit best[4], RfBvhItemFn fn, void *const ctx[4], int any_side);
 /* 1 when anything is hit at t_min <= t < t_max, seen from either side (shadow rays); *key (may
  * be NULL) gets the key of the item found. */
 int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,

@@ -183,6 +183,12 @@ typedef struct {
                                hit point and the ray's origin, times RF_RAY_OFFSET_CONE/_INSTANCE */
 } RfSurfaceHit;
 int rf_tracer_intersect(const RfTracer *tracer, const RfRay *ray, double t_min, double t_max, RfSurfaceHit *hit);
+/* rf_tracer_intersect for the rays of the lanes in active (bit l: rays[l] from t_min[l], to
+ * infinity) in one query, the tree walked once for them all (rf_bvh_nearest4): bit l of the
+ * result is set when ray l hits, with hit[l] bit for bit what rf_tracer_intersect gives it.
+ * Rays without motion (the scene's first keyframe). */
+unsigned rf_tracer_intersect4(const RfTracer *tracer, const RfRay rays[4], unsigned active, const double t_min[4],
+                              RfSurfaceHit hit[4]);
 
 /* `refray trace`: every step of one pixel's rays, reported by the render kernels themselves as
  * they render it (RfRenderOptions.trace), so the trace is the renderer's own arithmetic. */

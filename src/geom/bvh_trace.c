@@ -17,6 +17,10 @@
 #define RF_BVH_SSE 1
 #endif
 
+/* the leaf tests inlined into both walks, as into the one walk they were written for (out of
+ * line they cost the one-ray walk 4 %) */
+#define RF_LEAF_INLINE inline __attribute__((always_inline))
+
 #define STACK (WIDTH * 64) /* (children - 1) per level, depth < 64 */
 
 static inline float fmaxf_(float a, float b) { return b > a ? b : a; }
@@ -279,7 +283,7 @@ enum { NEAREST = 0, ANY = 1, ANY_SIDE = 2 };
 /* The leaf's triangles: the float filter, then the double watertight test for what is left.
  * ANY: returns 1 at the first hit in [t_min, best->t). Otherwise improves *best by the
  * (t, key) rule and the triangles' sides (ANY_SIDE: either side counts); returns 1 when it did. */
-static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double t_min,
+static RF_LEAF_INLINE int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double t_min,
                             RfBvhHit *best, int mode)
 {
     int improved = 0;
@@ -330,31 +334,28 @@ static inline int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double 
     return improved;
 }
 
-/* A sphere of an "others" leaf, by the rules the tracer applies to every item: the first root at
- * t >= t_min within the limit (t < lim, or t <= lim for a key below lim_key) whose side the
- * sphere shows (a hidden side passes the ray on to the far root; modes other than NEAREST: either
- * side). Returns the root + 1 (1 near, 2 far) or 0, and its t. */
-static inline int sphere_hit(const RfBvhOther *o, const RfRay *ray, double t_min, double lim, uint64_t lim_key,
-                             int mode, double *t, RfSphereRoots *roots)
+/* A sphere of an "others" leaf, by the rules the tracer applies to every item, from its roots r
+ * (rf_sphere_roots): the first root at t >= t_min within the limit (t < lim, or t <= lim for a
+ * key below lim_key) whose side the sphere shows (a hidden side passes the ray on to the far
+ * root; modes other than NEAREST: either side). Returns the root + 1 (1 near, 2 far) or 0, and
+ * its t. */
+static inline int sphere_pick(const RfBvhOther *o, const RfSphereRoots *r, const RfRay *ray, double t_min,
+                              double lim, uint64_t lim_key, int mode, double *t)
 {
-    RfSphereRoots r;
-    if (!rf_sphere_roots(ray, &o->u.sphere, &r))
-        return 0;
     unsigned sides = o->user >> 30;
     double lo = t_min;
     for (int c = 0; c < 2; c++) {
-        double tc = r.t[c];
+        double tc = r->t[c];
         if (!(tc >= lo && (tc < lim || (tc == lim && o->key < lim_key))))
             continue;
         if (mode == NEAREST && sides != RF_BVH_SEE_BOTH) {
-            int front = rf_vec3_dot(ray->dir, rf_sphere_root_normal(&r, ray, &o->u.sphere, c)) < 0.0;
+            int front = rf_vec3_dot(ray->dir, rf_sphere_root_normal(r, ray, &o->u.sphere, c)) < 0.0;
             if (front == (sides == RF_BVH_SEE_BACK)) { /* the hidden side: look beyond it */
                 lo = rf_next_up(tc);
                 continue;
             }
         }
         *t = tc;
-        *roots = r;
         return c + 1;
     }
     return 0;
@@ -378,47 +379,61 @@ static inline int cone_hit(const RfBvh *bvh, const RfBvhOther *o, const RfRay *r
     return 0;
 }
 
+/* One item of an "others" leaf: its test by its kind, then one rule for a hit: 1 at any hit
+ * (ANY: best->key is set), or when it is the new nearest (best takes its details). roots: a
+ * sphere's roots when the caller has them (rf_sphere_roots4), NULL to compute them here. */
+static RF_LEAF_INLINE int other_item(const RfBvh *bvh, const RfBvhOther *o, const RfBvhRay *r, double t_min, RfBvhHit *best,
+                             RfBvhItemFn fn, void *ctx, int mode, const RfSphereRoots *roots)
+{
+    double t;
+    RfSphereRoots own;
+    RfHit h;
+    int root = 0, hit;
+    if (o->kind == RF_BVH_SPHERE) {
+        if (!roots) {
+            if (!rf_sphere_roots(&r->ray, &o->u.sphere, &own))
+                return 0;
+            roots = &own;
+        }
+        root = sphere_pick(o, roots, &r->ray, t_min, best->t, mode == ANY ? 0 : best->key, mode, &t);
+        hit = root != 0;
+    } else if (o->kind == RF_BVH_CONE) {
+        if ((hit = cone_hit(bvh, o, &r->ray, t_min, best->t, mode != ANY && o->key < best->key, mode, &h)))
+            t = h.t;
+    } else {
+        hit = fn(ctx, o->key, r, t_min, best->t, mode != ANY && o->key < best->key, &t);
+    }
+    if (!hit)
+        return 0;
+    best->key = o->key;
+    if (mode == ANY)
+        return 1;
+    best->t = t;
+    best->tri = NULL;
+    best->sphere = o->kind == RF_BVH_SPHERE ? &o->u.sphere : NULL;
+    best->cone = o->kind == RF_BVH_CONE ? &bvh->cones[o->u.cone].cone : NULL;
+    if (o->kind == RF_BVH_SPHERE) {
+        best->far = root == 2;
+        best->roots = *roots;
+    } else if (o->kind == RF_BVH_CONE) {
+        best->normal = h.normal;
+    }
+    if (o->kind != RF_BVH_OTHER) /* the caller's items keep their details themselves */
+        best->user = o->user & USER_BITS;
+    return 1;
+}
+
 static inline int leaf_others(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r, double t_min,
                               RfBvhHit *best, RfBvhItemFn fn, void *ctx, int mode)
 {
     int improved = 0;
     const RfBvhOther *o = &bvh->others[REF_FIRST(ref)], *end = o + REF_COUNT(ref);
-    for (; o < end; o++) {
-        /* the item's test by its kind, then one rule for a hit: any (ANY) or the new nearest */
-        double t;
-        RfSphereRoots roots;
-        RfHit h;
-        int root = 0, hit;
-        if (o->kind == RF_BVH_SPHERE) {
-            root = sphere_hit(o, &r->ray, t_min, best->t, mode == ANY ? 0 : best->key, mode, &t, &roots);
-            hit = root != 0;
-        } else if (o->kind == RF_BVH_CONE) {
-            if ((hit = cone_hit(bvh, o, &r->ray, t_min, best->t, mode != ANY && o->key < best->key, mode, &h)))
-                t = h.t;
-        } else {
-            hit = fn(ctx, o->key, r, t_min, best->t, mode != ANY && o->key < best->key, &t);
+    for (; o < end; o++)
+        if (other_item(bvh, o, r, t_min, best, fn, ctx, mode, NULL)) {
+            if (mode == ANY)
+                return 1;
+            improved = 1;
         }
-        if (!hit)
-            continue;
-        if (mode == ANY) {
-            best->key = o->key;
-            return 1;
-        }
-        best->t = t;
-        best->key = o->key;
-        best->tri = NULL;
-        best->sphere = o->kind == RF_BVH_SPHERE ? &o->u.sphere : NULL;
-        best->cone = o->kind == RF_BVH_CONE ? &bvh->cones[o->u.cone].cone : NULL;
-        if (o->kind == RF_BVH_SPHERE) {
-            best->far = root == 2;
-            best->roots = roots;
-        } else if (o->kind == RF_BVH_CONE) {
-            best->normal = h.normal;
-        }
-        if (o->kind != RF_BVH_OTHER) /* the caller's items keep their details themselves */
-            best->user = o->user & USER_BITS;
-        improved = 1;
-    }
     return improved;
 }
 
@@ -496,6 +511,153 @@ static inline int traverse(const RfBvh *bvh, RfBvhRay *r, double t_min, RfBvhHit
     }
 }
 
+/* ---- four rays in one walk (rf_bvh_nearest4) ------------------------------------------------ */
+
+/* A subtree on the packet's stack: the lanes that entered it and each one's entry distance;
+ * near, the least of them, orders the stack. */
+typedef struct {
+    float t[4];
+    float near;
+    uint32_t ref;
+    unsigned lanes;
+} Entry4;
+
+/* node_test_avx or node_test_scalar, as traverse picks them */
+static inline unsigned node_test(const RfBvh *bvh, const RfBvhNode *n, const RfBvhRay *r, const void *nr, float tmin,
+                                 float tmax, float *tn)
+{
+#if RF_BVH_AVX
+    if (!bvh->scalar)
+        return node_test_avx(n, nr, _mm256_set1_ps(tmin), _mm256_set1_ps(tmax), tn);
+#else
+    (void)nr;
+#endif
+    (void)bvh;
+    return node_test_scalar(n, r, tmin, tmax, tn);
+}
+
+/* An "others" leaf for the lanes of a packet: a sphere's roots for the four rays at once
+ * (rf_sphere_roots4), then each lane's rule with its own limit; other items lane by lane. */
+static inline unsigned leaf_others4(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r, const RfRay4 *r4,
+                                    const RfRay *rays, unsigned lanes, const double *t_min, RfBvhHit *best,
+                                    RfBvhItemFn fn, void *const *ctx, int mode)
+{
+    unsigned improved = 0;
+    const RfBvhOther *o = &bvh->others[REF_FIRST(ref)], *end = o + REF_COUNT(ref);
+    for (; o < end; o++) {
+        RfSphereRoots roots[4];
+        unsigned todo = lanes;
+        if (o->kind == RF_BVH_SPHERE)
+            todo &= rf_sphere_roots4(r4, rays, &o->u.sphere, roots);
+        for (; todo; todo &= todo - 1) {
+            int l = __builtin_ctz(todo);
+            if (other_item(bvh, o, &r[l], t_min[l], &best[l], fn, ctx[l], mode,
+                           o->kind == RF_BVH_SPHERE ? &roots[l] : NULL))
+                improved |= 1u << l;
+        }
+    }
+    return improved;
+}
+
+/* traverse's nearest-hit walk (mode NEAREST or ANY_SIDE) for the lanes in active at once: each
+ * node is tested for the lanes that entered it, each lane pruned by its own best; the order of
+ * the walk is the packet's, which does not change a lane's result (the (t, key) rule picks one
+ * hit whatever the order, and every pruned subtree is one that lane could not have improved). */
+static unsigned traverse4(const RfBvh *bvh, RfBvhRay *r, unsigned active, const double *t_min, RfBvhHit *best,
+                          RfBvhItemFn fn, void *const *ctx, int mode)
+{
+    if (bvh->node_count == 0 || !active)
+        return 0;
+    RfRay4 r4;
+    RfRay rays[4];
+#if RF_BVH_AVX
+    NodeRay nr[4];
+#else
+    char nr[4][1];
+#endif
+    float tmin[4], tmax[4];
+    for (int l = 0; l < 4; l++) { /* an idle lane holds a copy of a working one: real numbers */
+        int from = (active >> l) & 1 ? l : __builtin_ctz(active);
+        rays[l] = r[from].ray;
+        rf_ray4_set(&r4, l, &rays[l]);
+        tmin[l] = rf__widen_down(t_min[from]);
+        tmax[l] = rf__widen_up(best[from].t);
+#if RF_BVH_AVX
+        if ((active >> l) & 1)
+            node_ray(&r[l], &nr[l]);
+#endif
+    }
+    Entry4 stack[STACK];
+    int top = 0;
+    unsigned found = 0, lanes = active;
+    uint32_t cur = REF_INNER(0);
+    for (;;) {
+        if (REF_KIND(cur) == KIND_INNER) {
+            const RfBvhNode *n = &bvh->nodes[REF_INDEX(cur)];
+            float tn[4][WIDTH];
+            unsigned m[4] = {0, 0, 0, 0}, any = 0;
+            for (unsigned s = lanes; s; s &= s - 1) {
+                int l = __builtin_ctz(s);
+                m[l] = node_test(bvh, n, &r[l], &nr[l], tmin[l], tmax[l], tn[l]);
+                any |= m[l];
+            }
+            if (any) {
+                /* the entered children onto the stack, the nearest (by its nearest lane) on top */
+                int base = top;
+                for (; any; any &= any - 1) {
+                    int k = __builtin_ctz(any);
+                    Entry4 e = {{INFINITY, INFINITY, INFINITY, INFINITY}, INFINITY, n->ref[k], 0};
+                    for (unsigned s = lanes; s; s &= s - 1) {
+                        int l = __builtin_ctz(s);
+                        if ((m[l] >> k) & 1) {
+                            e.lanes |= 1u << l;
+                            e.t[l] = tn[l][k];
+                            e.near = tn[l][k] < e.near ? tn[l][k] : e.near;
+                        }
+                    }
+                    int q = top++;
+                    for (; q > base && stack[q - 1].near < e.near; q--)
+                        stack[q] = stack[q - 1];
+                    stack[q] = e;
+                }
+                --top;
+                cur = stack[top].ref;
+                lanes = stack[top].lanes;
+                continue;
+            }
+        } else if (REF_KIND(cur) != KIND_EMPTY) {
+            unsigned hit = 0;
+            if (REF_KIND(cur) == KIND_TRIS) {
+                for (unsigned s = lanes; s; s &= s - 1) {
+                    int l = __builtin_ctz(s);
+                    hit |= (unsigned)leaf_tris(bvh, cur, &r[l], t_min[l], &best[l], mode) << l;
+                }
+            } else {
+                hit = leaf_others4(bvh, cur, r, &r4, rays, lanes, t_min, best, fn, ctx, mode);
+            }
+            found |= hit;
+            for (; hit; hit &= hit - 1) {
+                int l = __builtin_ctz(hit);
+                tmax[l] = rf__widen_up(best[l].t);
+            }
+        }
+        /* the next subtree that can still hold a hit as near as some lane's best (ties count) */
+        for (;;) {
+            if (top == 0)
+                return found;
+            const Entry4 *e = &stack[--top];
+            lanes = 0;
+            for (unsigned s = e->lanes; s; s &= s - 1) {
+                int l = __builtin_ctz(s);
+                lanes |= (unsigned)(e->t[l] <= tmax[l]) << l;
+            }
+            if (lanes)
+                break;
+        }
+        cur = stack[top].ref;
+    }
+}
+
 /* Whether the box of child k of node n lies outside one of the cone's planes by more than
  * margin: its corner farthest to the inside of each plane decides. */
 static int box_outside_cone(const RfBvhNode *n, int k, RfVec3 apex, const RfVec3 *normals, int count,
@@ -567,4 +729,10 @@ int rf_bvh_occluded(const RfBvh *bvh, RfBvhRay *ray, double t_min, double t_max,
     if (hit && key)
         *key = lim.key;
     return hit;
+}
+
+unsigned rf_bvh_nearest4(const RfBvh *bvh, RfBvhRay ray[4], unsigned active, const double t_min[4], RfBvhHit best[4],
+                         RfBvhItemFn fn, void *const ctx[4], int any_side)
+{
+    return traverse4(bvh, ray, active & 0xFu, t_min, best, fn, ctx, any_side ? ANY_SIDE : NEAREST);
 }

@@ -156,6 +156,88 @@ int rf_sphere_roots(const RfRay *ray, const RfSphere *s, RfSphereRoots *out)
     return 1;
 }
 
+#if defined(__AVX2__) && defined(__FMA__)
+/* add_square in four lanes */
+static inline void add_square4(__m256d h, double sgn, __m256d *s, __m256d *e)
+{
+    __m256d g = _mm256_set1_pd(sgn), hh = _mm256_mul_pd(h, h);
+    __m256d p = _mm256_mul_pd(g, hh);
+    __m256d pe = _mm256_mul_pd(g, _mm256_fmsub_pd(h, h, hh));
+    __m256d q = _mm256_add_pd(*s, p), z = _mm256_sub_pd(q, *s);
+    *e = _mm256_add_pd(*e, _mm256_add_pd(_mm256_add_pd(_mm256_sub_pd(*s, _mm256_sub_pd(q, z)), _mm256_sub_pd(p, z)), pe));
+    *s = q;
+}
+
+/* a x + b y + c z, added left to right as rf_vec3_dot does */
+static inline __m256d dot4(__m256d ax, __m256d ay, __m256d az, __m256d bx, __m256d by, __m256d bz)
+{
+    return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(ax, bx), _mm256_mul_pd(ay, by)), _mm256_mul_pd(az, bz));
+}
+
+unsigned rf_sphere_roots4(const RfRay4 *r4, const RfRay rays[4], const RfSphere *s, RfSphereRoots out[4])
+{
+    /* sphere_parts */
+    __m256d dx = _mm256_loadu_pd(r4->dx), dy = _mm256_loadu_pd(r4->dy), dz = _mm256_loadu_pd(r4->dz);
+    __m256d fx = _mm256_sub_pd(_mm256_loadu_pd(r4->ox), _mm256_set1_pd(s->center.x));
+    __m256d fy = _mm256_sub_pd(_mm256_loadu_pd(r4->oy), _mm256_set1_pd(s->center.y));
+    __m256d fz = _mm256_sub_pd(_mm256_loadu_pd(r4->oz), _mm256_set1_pd(s->center.z));
+    __m256d a = dot4(dx, dy, dz, dx, dy, dz), bh = dot4(dx, dy, dz, fx, fy, fz);
+    __m256d k = _mm256_div_pd(bh, a);
+    __m256d vx = _mm256_sub_pd(fx, _mm256_mul_pd(dx, k)), vy = _mm256_sub_pd(fy, _mm256_mul_pd(dy, k)),
+            vz = _mm256_sub_pd(fz, _mm256_mul_pd(dz, k));
+    __m256d lv = _mm256_sqrt_pd(dot4(vx, vy, vz, vx, vy, vz));
+    __m256d r = _mm256_set1_pd(s->radius), zero = _mm256_setzero_pd();
+    __m256d dq = _mm256_mul_pd(a, _mm256_mul_pd(_mm256_sub_pd(r, lv), _mm256_add_pd(r, lv)));
+    unsigned real = (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(dq, zero, _CMP_GE_OQ));
+    if (!real)
+        return 0;
+    /* solve_compensated: c, then solve_quadratic's general case */
+    __m256d se = zero, ee = zero;
+    add_square4(fx, 1.0, &se, &ee);
+    add_square4(fy, 1.0, &se, &ee);
+    add_square4(fz, 1.0, &se, &ee);
+    add_square4(r, -1.0, &se, &ee);
+    __m256d c = _mm256_add_pd(se, ee);
+    __m256d sq = _mm256_sqrt_pd(dq), sign = _mm256_set1_pd(-0.0);
+    __m256d q = _mm256_xor_pd(_mm256_add_pd(bh, _mm256_or_pd(_mm256_andnot_pd(sign, sq), _mm256_and_pd(sign, bh))),
+                              sign); /* -(bh + copysign(sq, bh)) */
+    __m256d r1 = _mm256_div_pd(q, a), r2 = _mm256_div_pd(c, q);
+    __m256d lo = _mm256_blendv_pd(r2, r1, _mm256_cmp_pd(r1, r2, _CMP_LT_OQ)); /* rf_min_num without NaN */
+    __m256d hi = _mm256_blendv_pd(r2, r1, _mm256_cmp_pd(r1, r2, _CMP_GT_OQ));
+    __m256d rare = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(q, zero, _CMP_EQ_OQ), _mm256_cmp_pd(a, zero, _CMP_EQ_OQ)),
+                                _mm256_or_pd(_mm256_cmp_pd(dq, zero, _CMP_EQ_OQ), _mm256_cmp_pd(r1, r2, _CMP_UNORD_Q)));
+    double t0[4], t1[4], sqs[4], as[4], v[3][4];
+    _mm256_storeu_pd(t0, lo);
+    _mm256_storeu_pd(t1, hi);
+    _mm256_storeu_pd(sqs, sq);
+    _mm256_storeu_pd(as, a);
+    _mm256_storeu_pd(v[0], vx);
+    _mm256_storeu_pd(v[1], vy);
+    _mm256_storeu_pd(v[2], vz);
+    unsigned odd = (unsigned)_mm256_movemask_pd(rare) & real;
+    for (unsigned m = real & ~odd; m; m &= m - 1) {
+        int l = __builtin_ctz(m);
+        out[l].t[0] = t0[l], out[l].t[1] = t1[l], out[l].sq = sqs[l], out[l].a = as[l];
+        out[l].v = rf_vec3(v[0][l], v[1][l], v[2][l]);
+    }
+    for (unsigned m = odd; m; m &= m - 1) {
+        int l = __builtin_ctz(m);
+        if (!rf_sphere_roots(&rays[l], s, &out[l]))
+            real &= ~(1u << l);
+    }
+    return real;
+}
+#else
+unsigned rf_sphere_roots4(const RfRay4 *r4, const RfRay rays[4], const RfSphere *s, RfSphereRoots out[4])
+{
+    (void)r4;
+    unsigned real = 0;
+    for (int l = 0; l < 4; l++)
+        real |= (unsigned)rf_sphere_roots(&rays[l], s, &out[l]) << l;
+    return real;
+}
+#endif
+
 int rf_intersect_sphere(RfRay ray, RfSphere s, RfSphereMethod method, double t_min, double t_max,
                         RfHit *hit)
 {

@@ -185,36 +185,37 @@ static inline RfRgb RF_KNAME(traced)(const RfPathSample *ps, int depth, RfRgb lo
     return color;
 }
 
-/* The colour seen along ray (hits in [t_min, inf)); depth 1 is the primary ray, weight the
- * product of the reflection/transmission weights on the way here. */
-static RfRgb RF_KNAME(trace)(const RfKernelJob *job, const RfRay *ray, double t_min, int depth, double weight,
-                             RfRenderStats *st, uint64_t *shadow_cache, const RfPathSample *ps)
+/* A ray that meets nothing: the background. */
+static inline RfRgb RF_KNAME(missed)(const RfKernelJob *job, int depth, const RfPathSample *ps)
 {
-    RfSurfaceHit h;
-    if ((RF_ON(RF_K_MOTION) ? rf_tracer_intersect_at(job->tracer, ray, ps->motion, t_min, HUGE_VAL, &h)
-                            : rf_tracer_intersect(job->tracer, ray, t_min, HUGE_VAL, &h)) < 0) {
-        if (ps->log)
-            rf_kernel_log(ps->log, " -> nothing (background)");
-        if (RF_TRACE_ON(ps)) {
-            RfTraceEvent ev;
-            memset(&ev, 0, sizeof ev);
-            ev.kind = RF_TRACE_MISS, ev.depth = depth, ev.sample = (int)ps->k, ev.samples = (int)ps->n;
-            ev.color = job->background;
-            ps->log->trace(ps->log->trace_ctx, &ev);
-        }
-        return job->background;
-    }
     if (ps->log)
-        rf_kernel_log_hit(ps->log, job->scene, &h);
+        rf_kernel_log(ps->log, " -> nothing (background)");
     if (RF_TRACE_ON(ps)) {
         RfTraceEvent ev;
         memset(&ev, 0, sizeof ev);
-        ev.kind = RF_TRACE_HIT, ev.depth = depth, ev.sample = (int)ps->k, ev.samples = (int)ps->n, ev.hit = &h;
+        ev.kind = RF_TRACE_MISS, ev.depth = depth, ev.sample = (int)ps->k, ev.samples = (int)ps->n;
+        ev.color = job->background;
         ps->log->trace(ps->log->trace_ctx, &ev);
     }
-    const RfMaterial *m = &job->materials[h.material];
+    return job->background;
+}
+
+/* The colour a ray returns from its nearest hit h (depth 1 is the primary ray, weight the
+ * product of the reflection/transmission weights on the way here). */
+static RfRgb RF_KNAME(shade)(const RfKernelJob *job, const RfRay *ray, const RfSurfaceHit *h, int depth,
+                             double weight, RfRenderStats *st, uint64_t *shadow_cache, const RfPathSample *ps)
+{
+    if (ps->log)
+        rf_kernel_log_hit(ps->log, job->scene, h);
+    if (RF_TRACE_ON(ps)) {
+        RfTraceEvent ev;
+        memset(&ev, 0, sizeof ev);
+        ev.kind = RF_TRACE_HIT, ev.depth = depth, ev.sample = (int)ps->k, ev.samples = (int)ps->n, ev.hit = h;
+        ps->log->trace(ps->log->trace_ctx, &ev);
+    }
+    const RfMaterial *m = &job->materials[h->material];
     RfVec3 v = rf_vec3_neg(rf_vec3_normalize(ray->dir));
-    RfVec3 n = h.shading_normal;
+    RfVec3 n = h->shading_normal;
     /* §3.6.2: emission + ka I_a + the sum over the lights of the diffuse and specular terms */
     RfRgb color = rf_rgb(0, 0, 0);
     if (RF_ON(RF_K_EMISSION) && RF_ON(RF_K_AMBIENT))
@@ -235,8 +236,8 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, const RfRay *ray, double t_
                 uint32_t run = ns - j0 < RF_SAMPLE_RUN ? ns - j0 : RF_SAMPLE_RUN;
                 rf_sample_2d_keyed_run(&keys, ps->k * ns + j0, run, ps->n * ns, uv);
                 for (uint32_t j = 0; j < run; j++)
-                    if (RF_KNAME(area_sample)(l, h.point, uv[j], &ls) &&
-                        RF_KNAME(light_term)(job, &h, m, n, v, &ls, st, &shadow_cache[li], ps, li, (int)(j0 + j),
+                    if (RF_KNAME(area_sample)(l, h->point, uv[j], &ls) &&
+                        RF_KNAME(light_term)(job, h, m, n, v, &ls, st, &shadow_cache[li], ps, li, (int)(j0 + j),
                                              depth, &term))
                         color = rf_rgb_add(color, term);
             }
@@ -246,10 +247,10 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, const RfRay *ray, double t_
             ls = rf_light_directional(l->intensity, l->direction);
         } else if (RF_ON(RF_K_SPOT) && l->kind == RF_LIGHT_SPOT) {
             if (rf_light_spot(l->intensity, l->position, l->direction, l->spot_exponent, l->spot_cutoff_rad,
-                              l->falloff, h.point, &ls) != RF_OK)
+                              l->falloff, h->point, &ls) != RF_OK)
                 continue;
         } else { /* §3.7 point light, as rf_light_point */
-            RfVec3 to = rf_vec3_sub(l->position, h.point);
+            RfVec3 to = rf_vec3_sub(l->position, h->point);
             double d = rf_vec3_length(to);
             if (!(d > 0.0) || !isfinite(d))
                 continue;
@@ -259,7 +260,7 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, const RfRay *ray, double t_
                        ? rf_rgb_scale(l->intensity, 1.0 / (d * d))
                        : l->intensity;
         }
-        if (RF_KNAME(light_term)(job, &h, m, n, v, &ls, st, &shadow_cache[li], ps, li, -1, depth, &term))
+        if (RF_KNAME(light_term)(job, h, m, n, v, &ls, st, &shadow_cache[li], ps, li, -1, depth, &term))
             color = rf_rgb_add(color, term);
     }
     RfRgb local = color; /* for the trace */
@@ -270,7 +271,7 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, const RfRay *ray, double t_
     if (!reflects && !transmits)
         return RF_KNAME(traced)(ps, depth, local, color);
     /* §3.8.1: entering through the front (outside) goes from air (1) into the material */
-    double eta_i = h.front ? 1.0 : m->ior, eta_t = h.front ? m->ior : 1.0;
+    double eta_i = h->front ? 1.0 : m->ior, eta_t = h->front ? m->ior : 1.0;
     double vn = rf_vec3_dot(v, n);
     double cos_i = vn > 0.0 ? (vn < 1.0 ? vn : 1.0) : 0.0; /* fmin(1, fmax(0, vn)), NaN aside */
     RfVec3 tdir;
@@ -300,21 +301,32 @@ static RfRgb RF_KNAME(trace)(const RfKernelJob *job, const RfRay *ray, double t_
     if (mr > 0.0 && weight * mr >= job->min_contribution) {
         RfVec3 rdir = rf_reflect_dir(rf_vec3_neg(v), n);
         if (RF_TRACE_ON(ps)) {
-            ev.refracted = 0, ev.weight = wr, ev.ray = rf_ray(rf_hit_offset_origin(&h, rdir, job->fixed_offset), rdir);
+            ev.refracted = 0, ev.weight = wr, ev.ray = rf_ray(rf_hit_offset_origin(h, rdir, job->fixed_offset), rdir);
             ps->log->trace(ps->log->trace_ctx, &ev);
         }
-        color = RF_KNAME(secondary)(job, &h, rdir, wr, mr, 0, glossy ? m->gloss : 0.0, depth, weight, st, shadow_cache, ps,
+        color = RF_KNAME(secondary)(job, h, rdir, wr, mr, 0, glossy ? m->gloss : 0.0, depth, weight, st, shadow_cache, ps,
                                     color);
     }
     if (refracts && mt > 0.0 && weight * mt >= job->min_contribution) {
         if (RF_TRACE_ON(ps)) {
-            ev.refracted = 1, ev.weight = wt, ev.ray = rf_ray(rf_hit_offset_origin(&h, tdir, job->fixed_offset), tdir);
+            ev.refracted = 1, ev.weight = wt, ev.ray = rf_ray(rf_hit_offset_origin(h, tdir, job->fixed_offset), tdir);
             ps->log->trace(ps->log->trace_ctx, &ev);
         }
-        color = RF_KNAME(secondary)(job, &h, tdir, wt, mt, 1, glossy ? m->gloss : 0.0, depth, weight, st, shadow_cache, ps,
+        color = RF_KNAME(secondary)(job, h, tdir, wt, mt, 1, glossy ? m->gloss : 0.0, depth, weight, st, shadow_cache, ps,
                                     color);
     }
     return RF_KNAME(traced)(ps, depth, local, color);
+}
+
+/* The colour seen along ray (hits in [t_min, inf)). */
+static RfRgb RF_KNAME(trace)(const RfKernelJob *job, const RfRay *ray, double t_min, int depth, double weight,
+                             RfRenderStats *st, uint64_t *shadow_cache, const RfPathSample *ps)
+{
+    RfSurfaceHit h;
+    if ((RF_ON(RF_K_MOTION) ? rf_tracer_intersect_at(job->tracer, ray, ps->motion, t_min, HUGE_VAL, &h)
+                            : rf_tracer_intersect(job->tracer, ray, t_min, HUGE_VAL, &h)) < 0)
+        return RF_KNAME(missed)(job, depth, ps);
+    return RF_KNAME(shade)(job, ray, &h, depth, weight, st, shadow_cache, ps);
 }
 
 /* refray trace: a camera sample's image position and primary ray */
@@ -329,22 +341,78 @@ static inline void RF_KNAME(trace_sample)(const RfPathSample *ps, double px, dou
     }
 }
 
-/* The primary ray's colour: the hither plane, the trace, the invalid-sample rule. */
-static RfRgb RF_KNAME(camera_ray)(const RfKernelJob *job, const RfRay *ray, const RfPathSample *ps, RfRenderStats *st,
-                                  uint64_t *shadow_cache)
+/* Where a camera ray starts: the hither plane, nothing nearer than `hither` along the view
+ * axis -w. */
+static inline double RF_KNAME(hither_t)(const RfKernelJob *job, const RfRay *ray)
 {
-    const RfCamera *cam = &job->camera;
-    /* the hither plane: nothing nearer than `hither` along the view axis -w */
-    double t_min = job->hither > 0.0 ? job->hither / -rf_vec3_dot(ray->dir, cam->basis.w) : 0.0;
-    st->primary_rays++;
-    RfRgb c = RF_KNAME(trace)(job, ray, t_min, 1, 1.0, st, shadow_cache, ps);
+    return job->hither > 0.0 ? job->hither / -rf_vec3_dot(ray->dir, job->camera.basis.w) : 0.0;
+}
+
+/* A camera sample's colour as the film takes it: never let NaN, Inf or a negative radiance
+ * reach it (note the first: the render fails unless it is a preview; count it; store black). */
+static inline RfRgb RF_KNAME(film)(const RfKernelJob *job, const RfPathSample *ps, RfRenderStats *st, RfRgb c)
+{
     if (!rf_kernel_rgb_valid(c)) {
-        /* never let NaN, Inf or a negative radiance reach the film: note the first (the render
-         * fails unless it is a preview), count it, store black */
         rf_kernel_note_invalid(st, job->width, ps->pixel, (int)ps->k, c);
         c = rf_rgb(0, 0, 0);
     }
     return c;
+}
+
+/* The primary ray's colour: the hither plane, the trace, the invalid-sample rule. */
+static RfRgb RF_KNAME(camera_ray)(const RfKernelJob *job, const RfRay *ray, const RfPathSample *ps, RfRenderStats *st,
+                                  uint64_t *shadow_cache)
+{
+    st->primary_rays++;
+    RfRgb c = RF_KNAME(trace)(job, ray, RF_KNAME(hither_t)(job, ray), 1, 1.0, st, shadow_cache, ps);
+    return RF_KNAME(film)(job, ps, st, c);
+}
+
+/* Camera rays in groups (stage 1 of the wavefront plan, docs/performance.md): whether this
+ * kernel and render take them, a pinhole camera's rays at the scene's first keyframe. The
+ * general kernel, the reference, traces one ray at a time. */
+#define RF_KGROUPS(job) \
+    (RF_KPARTS != RF_K_ALL && !(RF_ON(RF_K_LENS) && (job)->camera.aperture_radius > 0.0) && \
+     !(RF_ON(RF_K_MOTION) && (job)->motion))
+
+/* count (1-4) camera rays with their samples ps[l]: their nearest hits in one query
+ * (rf_tracer_intersect4), then each shaded as camera_ray shades it, in their order; out[l] gets
+ * camera_ray's colour bit for bit. */
+static void RF_KNAME(camera_rays)(const RfKernelJob *job, const RfRay rays[4], int count, const RfPathSample ps[4],
+                                  RfRenderStats *st, uint64_t *shadow_cache, RfRgb out[4])
+{
+    double t_min[4];
+    RfSurfaceHit h[4];
+    for (int l = 0; l < count; l++)
+        t_min[l] = RF_KNAME(hither_t)(job, &rays[l]);
+    unsigned hit = rf_tracer_intersect4(job->tracer, rays, (1u << count) - 1, t_min, h);
+    for (int l = 0; l < count; l++) {
+        st->primary_rays++;
+        RfRgb c = (hit >> l) & 1 ? RF_KNAME(shade)(job, &rays[l], &h[l], 1, 1.0, st, shadow_cache, &ps[l])
+                                 : RF_KNAME(missed)(job, 1, &ps[l]);
+        out[l] = RF_KNAME(film)(job, &ps[l], st, c);
+    }
+}
+
+/* Pixels x .. x + count - 1 (count <= 4) of row y at one sample each, through their centres
+ * (rf_camera_ray's plane points, per row and column), in one group. */
+static void RF_KNAME(centres)(const RfKernelJob *job, int x, int y, int count, int thread)
+{
+    RfRenderStats *st = &job->per_thread[thread];
+    const RfCamera *cam = &job->camera;
+    RfRay rays[4];
+    RfPathSample ps[4];
+    RfRgb c[4];
+    for (int l = 0; l < count; l++) {
+        RfPathSample p = {(uint64_t)y * (uint64_t)job->width + (uint64_t)(x + l), 0, 1, job->sampler,
+                          job->shutter_open, job->motion ? job->motion[thread] : NULL, job->trace_log, NULL};
+        ps[l] = p;
+        RfVec3 pc = rf_vec3(job->column_x[x + l], job->row_y[y], -cam->d);
+        rays[l] = rf_ray(cam->eye, rf_vec3_normalize(rf_camera_to_world(cam, pc)));
+    }
+    RF_KNAME(camera_rays)(job, rays, count, ps, st, rf_kernel_shadow_cache(job, thread), c);
+    for (int l = 0; l < count; l++)
+        rf_kernel_store(job, st, x + l, y, c[l]);
 }
 
 /* One camera sample: the ray through image position (px, py) (pixel units, y down), through the
@@ -386,8 +454,15 @@ static void RF_KNAME(pixels)(const RfKernelJob *job, RfTile tile, int thread, in
     RfRenderStats *st = &job->per_thread[thread];
     uint64_t *shadow_cache = rf_kernel_shadow_cache(job, thread);
     const RfCamera *cam = &job->camera;
+    const int groups = RF_KGROUPS(job) && !missed;
     for (int y = tile.y0; y < tile.y1; y++)
         for (int x = tile.x0; x < tile.x1; x++) {
+            if (n == 1 && groups) { /* the row's pixel centres, four at a time */
+                int count = tile.x1 - x < 4 ? tile.x1 - x : 4;
+                RF_KNAME(centres)(job, x, y, count, thread);
+                x += count - 1;
+                continue;
+            }
             RfPathSample ps = {(uint64_t)y * (uint64_t)job->width + (uint64_t)x, 0, (uint32_t)n, job->sampler,
                                job->shutter_open, job->motion ? job->motion[thread] : NULL, job->trace_log, NULL};
             RfRgb sum = rf_rgb(0, 0, 0);
@@ -409,35 +484,56 @@ static void RF_KNAME(pixels)(const RfKernelJob *job, RfTile tile, int thread, in
                 RfSampleKeys pos = rf_sample_keys(job->sampler, ps.pixel, RF_DIM_PIXEL, job->seed);
                 RfSampleKeys lens = through_lens ? rf_sample_keys(job->sampler, ps.pixel, RF_DIM_LENS, job->seed) : pos;
                 double pos_uv[RF_SAMPLE_RUN][2], lens_uv[RF_SAMPLE_RUN][2];
-                for (int k = 0; k < n; k++) {
-                    int j = k % RF_SAMPLE_RUN;
-                    if (j == 0) {
-                        uint32_t run = n - k < RF_SAMPLE_RUN ? (uint32_t)(n - k) : RF_SAMPLE_RUN;
-                        rf_sample_2d_keyed_run(&pos, (uint32_t)k, run, (uint32_t)n, pos_uv);
+                /* four samples at a time (RF_SAMPLE_RUN is a multiple of 4): their positions, their
+                 * colours (in one group of camera rays where the kernel takes them), their sums */
+                for (int k0 = 0; k0 < n; k0 += 4) {
+                    int j0 = k0 % RF_SAMPLE_RUN, count = n - k0 < 4 ? n - k0 : 4;
+                    if (j0 == 0) {
+                        uint32_t run = n - k0 < RF_SAMPLE_RUN ? (uint32_t)(n - k0) : RF_SAMPLE_RUN;
+                        rf_sample_2d_keyed_run(&pos, (uint32_t)k0, run, (uint32_t)n, pos_uv);
                         if (through_lens)
-                            rf_sample_2d_keyed_run(&lens, (uint32_t)k, run, (uint32_t)n, lens_uv);
+                            rf_sample_2d_keyed_run(&lens, (uint32_t)k0, run, (uint32_t)n, lens_uv);
                     }
-                    const double *s = pos_uv[j];
-                    ps.k = (uint32_t)k;
-                    ps.lens_uv = through_lens ? lens_uv[j] : NULL;
-                    double px = x + s[0], py = y + s[1], w = 1.0;
-                    if (!job->filter_box) {
-                        double r = job->filter.radius, ox = (2.0 * s[0] - 1.0) * r, oy = (2.0 * s[1] - 1.0) * r;
-                        w = rf_filter_eval(&job->filter, ox, oy);
-                        px = x + 0.5 + ox, py = y + 0.5 + oy;
+                    double px[4], py[4], w[4];
+                    RfRgb c[4];
+                    for (int l = 0; l < count; l++) {
+                        const double *s = pos_uv[j0 + l];
+                        px[l] = x + s[0], py[l] = y + s[1], w[l] = 1.0;
+                        if (!job->filter_box) {
+                            double r = job->filter.radius, ox = (2.0 * s[0] - 1.0) * r, oy = (2.0 * s[1] - 1.0) * r;
+                            w[l] = rf_filter_eval(&job->filter, ox, oy);
+                            px[l] = x + 0.5 + ox, py[l] = y + 0.5 + oy;
+                        }
                     }
-                    RfRgb c = job->background;
-                    if (missed)
-                        st->primary_rays++;
-                    else
-                        c = RF_KNAME(camera_sample)(job, px, py, &ps, st, shadow_cache);
-                    sum = rf_rgb_add(sum, c);
-                    if (job->filter_box) {
-                        if (job->variance) /* refray diff --stat: the samples' spread */
-                            sq = rf_rgb_add(sq, rf_rgb_mul(c, c));
+                    if (groups) {
+                        RfRay rays[4];
+                        RfPathSample group[4];
+                        for (int l = 0; l < count; l++) {
+                            group[l] = ps;
+                            group[l].k = (uint32_t)(k0 + l);
+                            rays[l] = rf_camera_ray(cam, px[l], py[l], 0.0, 0.0);
+                        }
+                        RF_KNAME(camera_rays)(job, rays, count, group, st, shadow_cache, c);
                     } else {
-                        wsum_c = rf_rgb_add(wsum_c, rf_rgb_scale(c, w));
-                        wsum += w;
+                        for (int l = 0; l < count; l++) {
+                            ps.k = (uint32_t)(k0 + l);
+                            ps.lens_uv = through_lens ? lens_uv[j0 + l] : NULL;
+                            c[l] = job->background;
+                            if (missed)
+                                st->primary_rays++;
+                            else
+                                c[l] = RF_KNAME(camera_sample)(job, px[l], py[l], &ps, st, shadow_cache);
+                        }
+                    }
+                    for (int l = 0; l < count; l++) {
+                        sum = rf_rgb_add(sum, c[l]);
+                        if (job->filter_box) {
+                            if (job->variance) /* refray diff --stat: the samples' spread */
+                                sq = rf_rgb_add(sq, rf_rgb_mul(c[l], c[l]));
+                        } else {
+                            wsum_c = rf_rgb_add(wsum_c, rf_rgb_scale(c[l], w[l]));
+                            wsum += w[l];
+                        }
                     }
                 }
                 /* a filter with negative lobes may leave a weight sum <= 0: then the plain mean */

@@ -694,26 +694,63 @@ static int bvh_item(void *ctx, uint64_t key, const RfBvhRay *r, double t_min, do
     return hit_item(ctx, key_item(key), &r->ray, NULL, t_min, inclusive ? rf_next_up(t_max) : t_max, t);
 }
 
+/* A level's unbounded items (planes), in key order, before its BVH: 1 when one is hit within
+ * the limit (*t_lim, *key_lim), which it then becomes (a shadow query: q->occluder). */
+static inline int level_unbounded(const Level *lv, Query *q, const RfRay *rp, double t_min, double *t_lim, uint64_t *key_lim)
+{
+    int found = 0;
+    for (int u = 0; u < lv->unbounded_count; u++) {
+        uint64_t key = lv->unbounded[u];
+        double t;
+        if (hit_key(q, key, rp, NULL, t_min, *t_lim, *key_lim, &t)) {
+            if (q->shadow)
+                return q->occluder = key, 1;
+            *t_lim = t, *key_lim = key, found = 1;
+        }
+    }
+    return found;
+}
+
+static inline void bvh_hit_init(RfBvhHit *best, double t, uint64_t key)
+{
+    best->t = t;
+    best->key = key;
+    best->tri = NULL;
+    best->sphere = NULL;
+    best->cone = NULL;
+}
+
+/* The details of the BVH's winner (a triangle, sphere or cone it tested itself) into q: the same
+ * bits as the BVH's t. The caller's items have put theirs there already. */
+static inline __attribute__((always_inline)) void level_winner(Query *q, const RfBvhHit *best, const RfRay *rp)
+{
+    if (!(best->tri || best->sphere || best->cone))
+        return;
+    q->tri = best->tri;
+    if (best->tri) { /* rf_intersect_triangle_watertight's hit from the BVH's own test */
+        rf_watertight_hit(best->tri, best->t, best->edges, best->has_normal ? &best->normal : NULL, &q->hit);
+    } else {
+        q->hit.t = best->t;
+        q->hit.l[0] = q->hit.l[1] = q->hit.l[2] = 0.0;
+        q->hit.normal = best->cone ? best->normal : rf_sphere_root_normal(&best->roots, rp, best->sphere, best->far);
+    }
+    q->item = key_item(best->key);
+    q->material = (int)(best->user & USER_MATERIAL);
+    q->smooth = (best->user & USER_SMOOTH) != 0;
+    q->instanced = 0;
+}
+
 /* The nearest (or, shadow = 1, any) hit in one level at t >= t_min within the limit
  * (*t_lim, *key_lim) (hit_key's rule). Returns 1 with q->hit, q->item and the new limit. */
 static int trace_level(const Level *lv, Query *q, const RfRay *rp, double t_min, double *t_lim, uint64_t *key_lim)
 {
     double bt = *t_lim;
     uint64_t bk = *key_lim;
-    int found = 0;
-    for (int u = 0; u < lv->unbounded_count; u++) {
-        uint64_t key = lv->unbounded[u];
-        double t;
-        if (hit_key(q, key, rp, NULL, t_min, bt, bk, &t)) {
-            if (q->shadow)
-                return q->occluder = key, 1;
-            bt = t, bk = key, found = 1;
-        }
-    }
+    int found = level_unbounded(lv, q, rp, t_min, &bt, &bk);
+    if (found && q->shadow)
+        return 1;
     RfBvhHit best;
-    best.tri = NULL;
-    best.sphere = NULL;
-    best.cone = NULL;
+    bvh_hit_init(&best, bt, bk);
     RfBvhRay br;
     if (q->tracer->opt.brute_force) {
         /* every item, in key order, with the double kernels alone: the reference for the BVH */
@@ -736,8 +773,6 @@ static int trace_level(const Level *lv, Query *q, const RfRay *rp, double t_min,
             q->occluder = key;
             return hit;
         }
-        best.t = bt;
-        best.key = bk;
         if (q->both ? rf_bvh_nearest_any_side(&lv->bvh, &br, t_min, &best, bvh_item, q)
                     : rf_bvh_nearest(&lv->bvh, &br, t_min, &best, bvh_item, q)) {
             bt = best.t;
@@ -747,20 +782,7 @@ static int trace_level(const Level *lv, Query *q, const RfRay *rp, double t_min,
     }
     if (!found)
         return 0;
-    if (best.tri || best.sphere || best.cone) { /* the winner's details: the same bits as the BVH's t */
-        q->tri = best.tri;
-        if (best.tri) { /* rf_intersect_triangle_watertight's hit from the BVH's own test */
-            rf_watertight_hit(best.tri, bt, best.edges, best.has_normal ? &best.normal : NULL, &q->hit);
-        } else {
-            q->hit.t = bt;
-            q->hit.l[0] = q->hit.l[1] = q->hit.l[2] = 0.0;
-            q->hit.normal = best.cone ? best.normal : rf_sphere_root_normal(&best.roots, rp, best.sphere, best.far);
-        }
-        q->item = key_item(bk);
-        q->material = (int)(best.user & USER_MATERIAL);
-        q->smooth = (best.user & USER_SMOOTH) != 0;
-        q->instanced = 0;
-    }
+    level_winner(q, &best, rp);
     *t_lim = bt;
     *key_lim = bk;
     return 1;
@@ -851,27 +873,24 @@ int rf_tracer_intersect(const RfTracer *t, const RfRay *ray, double t_min, doubl
     return rf_tracer_intersect_at(t, ray, NULL, t_min, t_max, out);
 }
 
-int rf_tracer_intersect_at(const RfTracer *t, const RfRay *rp, const RfMotionState *ms, double t_min, double t_max,
-                           RfSurfaceHit *out)
+/* The surface hit of a nearest-hit query q of ray (§3.5, the normals of §3.6.3 and §4.9, the
+ * point's error bound); returns its primitive. */
+static inline __attribute__((always_inline)) int surface_hit(const RfTracer *t, const Query *q, const RfRay *rp, RfSurfaceHit *out)
 {
-    Query q;
-    const RfRay ray = rf_ray_read(rp);
-    query_init(&q, t, 0, t->opt.two_sided, ms);
-    if (!trace_query(t, &q, &ray, t_min, t_max))
-        return -1;
+    const RfRay ray = *rp;
     const RfScene *s = t->scene;
-    out->t = q.hit.t;
-    out->prim = q.item.prim;
-    out->material = q.material;
-    out->point = rf_ray_at(ray, q.hit.t);
+    out->t = q->hit.t;
+    out->prim = q->item.prim;
+    out->material = q->material;
+    out->point = rf_ray_at(ray, q->hit.t);
     /* the hit point's error bound, in units of RF_RAY_OFFSET_REL (numeric.h). o + t d carries the
      * rounding of t, which grows with the distance travelled; a point put back on its surface
      * does not (pbrt-v4's reprojection): a sphere's along its radius, a triangle's from its
      * barycentric coordinates, a plane's along its normal. Their errors are a few ulps of the
      * coordinates they are made of. A cone's quadratic and an instance's matrices lose more. */
-    const RfPrimitive *pr = &s->prims[q.item.prim];
+    const RfPrimitive *pr = &s->prims[q->item.prim];
     int reprojected = 0; /* else the scale of the point and the origin */
-    if (!q.instanced && pr->type == RF_PRIM_SPHERE) {
+    if (!q->instanced && pr->type == RF_PRIM_SPHERE) {
         RfVec3 v = rf_vec3_sub(out->point, pr->u.sphere.center);
         double len = rf_vec3_length(v);
         if (len > 0.0) {
@@ -880,13 +899,13 @@ int rf_tracer_intersect_at(const RfTracer *t, const RfRay *rp, const RfMotionSta
             out->scale = rf_max_num(rf_vec3_max_abs(out->point), sc);
             reprojected = 1;
         }
-    } else if (!q.instanced && q.item.sub >= 0 && (pr->type == RF_PRIM_TRIANGLE || pr->type == RF_PRIM_POLYGON)) {
-        RfTriangle tri = q.tri ? *q.tri : item_triangle(t, q.item); /* the BVH block's copy: the same doubles */
-        out->point = rf_vec3_add(rf_vec3_add(rf_vec3_scale(tri.p1, q.hit.l[0]), rf_vec3_scale(tri.p2, q.hit.l[1])),
-                                 rf_vec3_scale(tri.p3, q.hit.l[2]));
+    } else if (!q->instanced && q->item.sub >= 0 && (pr->type == RF_PRIM_TRIANGLE || pr->type == RF_PRIM_POLYGON)) {
+        RfTriangle tri = q->tri ? *q->tri : item_triangle(t, q->item); /* the BVH block's copy: the same doubles */
+        out->point = rf_vec3_add(rf_vec3_add(rf_vec3_scale(tri.p1, q->hit.l[0]), rf_vec3_scale(tri.p2, q->hit.l[1])),
+                                 rf_vec3_scale(tri.p3, q->hit.l[2]));
         out->scale = rf_max_num(rf_vec3_max_abs(tri.p1), rf_max_num(rf_vec3_max_abs(tri.p2), rf_vec3_max_abs(tri.p3)));
         reprojected = 1;
-    } else if (!q.instanced && pr->type == RF_PRIM_PLANE) {
+    } else if (!q->instanced && pr->type == RF_PRIM_PLANE) {
         RfVec3 n = pr->u.plane.normal; /* any length */
         double nn = rf_vec3_dot(n, n);
         out->point = rf_vec3_sub(out->point, rf_vec3_scale(n, (rf_vec3_dot(n, out->point) - pr->u.plane.offset) / nn));
@@ -900,23 +919,75 @@ int rf_tracer_intersect_at(const RfTracer *t, const RfRay *rp, const RfMotionSta
     }
     if (pr->type == RF_PRIM_CONE)
         out->scale *= RF_RAY_OFFSET_CONE;
-    if (q.instanced)
+    if (q->instanced)
         out->scale *= RF_RAY_OFFSET_INSTANCE;
-    out->front = rf_vec3_dot(ray.dir, q.hit.normal) < 0.0;
-    out->normal = out->front ? q.hit.normal : rf_vec3_neg(q.hit.normal);
+    out->front = rf_vec3_dot(ray.dir, q->hit.normal) < 0.0;
+    out->normal = out->front ? q->hit.normal : rf_vec3_neg(q->hit.normal);
     out->shading_normal = out->normal;
-    if (q.smooth) {
+    if (q->smooth) {
         /* §3.6.3 Phong shading: interpolate the vertex normals with the barycentric coordinates */
-        const RfVec3 *nv = s->normals + s->prims[q.item.prim].u.poly.nfirst;
+        const RfVec3 *nv = s->normals + s->prims[q->item.prim].u.poly.nfirst;
         RfVec3 n;
         int c[3];
-        item_corners(t, q.item, c);
-        if (rf_interpolate_normal(nv[c[0]], nv[c[1]], nv[c[2]], q.hit.l[0], q.hit.l[1], q.hit.l[2], &n) == RF_OK) {
-            if (q.instanced) /* object space -> world (§4.9) */
-                n = rf_vec3_normalize(rf_mat3_mul_vec(q.nmat, n));
+        item_corners(t, q->item, c);
+        if (rf_interpolate_normal(nv[c[0]], nv[c[1]], nv[c[2]], q->hit.l[0], q->hit.l[1], q->hit.l[2], &n) == RF_OK) {
+            if (q->instanced) /* object space -> world (§4.9) */
+                n = rf_vec3_normalize(rf_mat3_mul_vec(q->nmat, n));
             /* keep it on the side of the geometric normal the ray sees */
             out->shading_normal = rf_vec3_dot(n, out->normal) < 0.0 ? rf_vec3_neg(n) : n;
         }
     }
     return out->prim;
+}
+
+int rf_tracer_intersect_at(const RfTracer *t, const RfRay *rp, const RfMotionState *ms, double t_min, double t_max,
+                           RfSurfaceHit *out)
+{
+    Query q;
+    const RfRay ray = rf_ray_read(rp);
+    query_init(&q, t, 0, t->opt.two_sided, ms);
+    if (!trace_query(t, &q, &ray, t_min, t_max))
+        return -1;
+    return surface_hit(t, &q, &ray, out);
+}
+
+unsigned rf_tracer_intersect4(const RfTracer *t, const RfRay rays[4], unsigned active, const double t_min[4],
+                              RfSurfaceHit out[4])
+{
+    const Level *lv = &t->world;
+    unsigned hit = 0;
+    active &= 0xFu;
+    if (t->opt.brute_force || lv->bvh_count == 0) { /* nothing to share: one query per ray */
+        for (unsigned s = active; s; s &= s - 1) {
+            int l = __builtin_ctz(s);
+            hit |= (unsigned)(rf_tracer_intersect(t, &rays[l], t_min[l], HUGE_VAL, &out[l]) >= 0) << l;
+        }
+        return hit;
+    }
+    /* trace_query's world level, with the BVH walked once for the four rays */
+    Query q[4];
+    RfRay ray[4];
+    RfBvhRay br[4];
+    RfBvhHit best[4];
+    void *ctx[4];
+    double bt[4];
+    uint64_t bk[4];
+    for (unsigned s = active; s; s &= s - 1) {
+        int l = __builtin_ctz(s);
+        query_init(&q[l], t, 0, t->opt.two_sided, NULL);
+        ctx[l] = &q[l];
+        ray[l] = rf_ray_read(&rays[l]);
+        bt[l] = HUGE_VAL;
+        bk[l] = 0;
+        hit |= (unsigned)level_unbounded(lv, &q[l], &ray[l], t_min[l], &bt[l], &bk[l]) << l;
+        bvh_hit_init(&best[l], bt[l], bk[l]);
+        rf_bvh_ray_init(&lv->bvh, &ray[l], &br[l]);
+    }
+    hit |= rf_bvh_nearest4(&lv->bvh, br, active, t_min, best, bvh_item, ctx, t->opt.two_sided);
+    for (unsigned s = hit; s; s &= s - 1) {
+        int l = __builtin_ctz(s);
+        level_winner(&q[l], &best[l], &ray[l]);
+        surface_hit(t, &q[l], &ray[l], &out[l]);
+    }
+    return hit;
 }
