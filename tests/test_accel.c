@@ -16,15 +16,18 @@
 #include "rf_test.h"
 #include "rf_test_render.h"
 
-enum { VECTOR, SCALAR, BRUTE, KINDS };
+/* the tracers compared; TWO_SIDED (every side seen) only where a test asks for it */
+enum { VECTOR, SCALAR, BRUTE, KINDS, TWO_SIDED = KINDS };
 
-static RfStatus make_tracers(const RfScene *s, RfTracer *t[KINDS])
+/* count tracers of the kinds above, from VECTOR on */
+static RfStatus make_tracers(const RfScene *s, RfTracer **t, int count)
 {
-    for (int k = 0; k < KINDS; k++) {
+    for (int k = 0; k < count; k++) {
         RfTracerOptions o = rf_tracer_options_default();
         o.threads = 2;
         o.scalar = k == SCALAR;
         o.brute_force = k == BRUTE;
+        o.two_sided = k == TWO_SIDED;
         RfStatus st = rf_tracer_create_opts(s, &o, &t[k]);
         if (st != RF_OK)
             return st;
@@ -42,6 +45,16 @@ static int same_hit(int pa, const RfSurfaceHit *a, int pb, const RfSurfaceHit *b
            memcmp(&a->point, &b->point, sizeof a->point) == 0 &&
            memcmp(&a->normal, &b->normal, sizeof a->normal) == 0 &&
            memcmp(&a->shading_normal, &b->shading_normal, sizeof a->shading_normal) == 0;
+}
+
+/* How many test rays a scene gets: brute force costs (rendered triangles) tests per ray, so
+ * each scene's rays stay under `work` tests in all (at most cap rays, at least 16). */
+static int ray_budget(const RfScene *s, long work, int cap)
+{
+    RfTriangleCount tc = rf_scene_triangle_count(s);
+    long per_ray = (long)(tc.rendered + s->prim_count) + 1;
+    long max = work / per_ray;
+    return max > cap ? cap : max < 16 ? 16 : (int)max;
 }
 
 /* Rays of three kinds: camera rays on a grid, random rays through the scene's box, and rays
@@ -87,15 +100,11 @@ static void t_accel_scenes_vs_brute_force(void)
         char err[512];
         RfTracer *t[KINDS] = {NULL, NULL, NULL};
         RF_CHECK_EQ_INT(rf_scene_load(path, NULL, &s, err, sizeof err), RF_OK);
-        if (make_tracers(&s, t) != RF_OK) {
+        if (make_tracers(&s, t, KINDS) != RF_OK) {
             rf_test_fail(__FILE__, __LINE__, "%s: tracers", path);
             continue;
         }
-        /* brute force costs (rendered triangles) tests per ray: keep each scene under ~3 M */
-        RfTriangleCount tc = rf_scene_triangle_count(&s);
-        long work = (long)(tc.rendered + s.prim_count) + 1;
-        int max = (int)(3000000L / work);
-        max = max > 2400 ? 2400 : max < 16 ? 16 : max;
+        int max = ray_budget(&s, 3000000L, 2400);
         RfRay *rays = malloc(sizeof *rays * (size_t)max);
         RfTestRng rng = {77 + i};
         int n = scene_rays(&s, t[VECTOR], &rng, rays, max), bad = 0;
@@ -142,22 +151,17 @@ static void t_accel_groups_vs_one_ray(void)
         const char *path = g.gl_pathv[i];
         RfScene s;
         char err[512];
-        RfTracer *t[KINDS + 1] = {NULL, NULL, NULL, NULL};
+        RfTracer *t[TWO_SIDED + 1] = {NULL, NULL, NULL, NULL};
         RF_CHECK_EQ_INT(rf_scene_load(path, NULL, &s, err, sizeof err), RF_OK);
-        RfTracerOptions two = rf_tracer_options_default();
-        two.two_sided = 1;
-        if (make_tracers(&s, t) != RF_OK || rf_tracer_create_opts(&s, &two, &t[KINDS]) != RF_OK) {
+        if (make_tracers(&s, t, TWO_SIDED + 1) != RF_OK) {
             rf_test_fail(__FILE__, __LINE__, "%s: tracers", path);
             continue;
         }
-        RfTriangleCount tc = rf_scene_triangle_count(&s);
-        long work = (long)(tc.rendered + s.prim_count) + 1;
-        int max = (int)(1500000L / work);
-        max = max > 1200 ? 1200 : max < 16 ? 16 : max;
+        int max = ray_budget(&s, 1500000L, 1200);
         RfRay *rays = malloc(sizeof *rays * (size_t)max);
         RfTestRng rng = {99 + i};
         int n = scene_rays(&s, t[VECTOR], &rng, rays, max), bad = 0;
-        for (int m = 0; m <= KINDS && !bad; m++)
+        for (int m = 0; m <= TWO_SIDED && !bad; m++)
             for (int k0 = 0; k0 + 4 <= n && !bad; k0 += 4) {
                 unsigned active = (unsigned)(k0 / 4) % 15u + 1u; /* 1 .. 15 in turn */
                 double t_min[4];
@@ -192,7 +196,7 @@ static void t_accel_groups_vs_one_ray(void)
                 }
             }
         free(rays);
-        for (int m = 0; m <= KINDS; m++)
+        for (int m = 0; m <= TWO_SIDED; m++)
             rf_tracer_free(t[m]);
         rf_scene_free(&s);
         scenes++;
@@ -309,7 +313,7 @@ static void t_accel_tie_rule(void)
         char err[512];
         RF_CHECK_EQ_INT(rf_scene_read_rf("tie.rf", text, strlen(text), &s, err, sizeof err), RF_OK);
         RfTracer *t[KINDS];
-        RF_CHECK_EQ_INT(make_tracers(&s, t), RF_OK);
+        RF_CHECK_EQ_INT(make_tracers(&s, t, KINDS), RF_OK);
         int ties = 0, ok = 1;
         for (int k = 1; k < 64; k++) {
             double x = k / 64.0;
@@ -347,7 +351,7 @@ static void t_accel_exact_edge_sign(void)
              1 + e, 1 + 2 * e, -1.0, -(1 + e), 1 + e, 1 + 2 * e, -1.0, -(1 + e));
     RfScene s;
     RfTracer *t[KINDS];
-    if (rf_scene_read_rf("edge.rf", text, strlen(text), &s, err, sizeof err) != RF_OK || make_tracers(&s, t) != RF_OK) {
+    if (rf_scene_read_rf("edge.rf", text, strlen(text), &s, err, sizeof err) != RF_OK || make_tracers(&s, t, KINDS) != RF_OK) {
         rf_test_fail(__FILE__, __LINE__, "%s", err);
         return;
     }
@@ -374,7 +378,7 @@ static void t_accel_nonconvex_watertight(void)
     if (!rf_test_load_scene(rf_test_data("verify/star_prism.nff"), &s))
         return;
     RfTracer *t[KINDS];
-    if (make_tracers(&s, t) != RF_OK) {
+    if (make_tracers(&s, t, KINDS) != RF_OK) {
         rf_test_fail(__FILE__, __LINE__, "tracers");
         rf_scene_free(&s);
         return;
@@ -436,7 +440,7 @@ static void t_accel_far_vertex_rays(void)
         snprintf(text + n, sizeof text - n, "\n");
         RfScene s;
         RfTracer *t[KINDS];
-        if (rf_scene_read_rf("t.rf", text, strlen(text), &s, err, sizeof err) != RF_OK || make_tracers(&s, t) != RF_OK) {
+        if (rf_scene_read_rf("t.rf", text, strlen(text), &s, err, sizeof err) != RF_OK || make_tracers(&s, t, KINDS) != RF_OK) {
             rf_test_fail(__FILE__, __LINE__, "%s", err);
             return;
         }

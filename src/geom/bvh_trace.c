@@ -17,10 +17,6 @@
 #define RF_BVH_SSE 1
 #endif
 
-/* the leaf tests inlined into both walks, as into the one walk they were written for (out of
- * line they cost the one-ray walk 4 %) */
-#define RF_LEAF_INLINE inline __attribute__((always_inline))
-
 #define STACK (WIDTH * 64) /* (children - 1) per level, depth < 64 */
 
 static inline float fmaxf_(float a, float b) { return b > a ? b : a; }
@@ -190,7 +186,23 @@ static inline unsigned node_test_avx(const RfBvhNode *n, const NodeRay *nr, __m2
     _mm256_storeu_ps(tn, t0);
     return (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ));
 }
+#else
+typedef struct { char none; } NodeRay; /* the scalar test reads the RfBvhRay itself */
+static inline void node_ray(const RfBvhRay *r, NodeRay *nr) { (void)r, (void)nr; }
 #endif
+
+/* node_test_avx or, with the scalar kernels, node_test_scalar */
+static inline unsigned node_test(const RfBvh *bvh, const RfBvhNode *n, const RfBvhRay *r, const NodeRay *nr,
+                                 float tmin, float tmax, float *tn)
+{
+#if RF_BVH_AVX
+    if (!bvh->scalar)
+        return node_test_avx(n, nr, _mm256_set1_ps(tmin), _mm256_set1_ps(tmax), tn);
+#else
+    (void)bvh, (void)nr;
+#endif
+    return node_test_scalar(n, r, tmin, tmax, tn);
+}
 
 /* The lanes of a triangle block that the float edge test cannot rule out (bit k: lane k). */
 static inline unsigned filter_scalar(const RfBvhTriBlock *blk, const RfBvhRay *r)
@@ -283,7 +295,7 @@ enum { NEAREST = 0, ANY = 1, ANY_SIDE = 2 };
 /* The leaf's triangles: the float filter, then the double watertight test for what is left.
  * ANY: returns 1 at the first hit in [t_min, best->t). Otherwise improves *best by the
  * (t, key) rule and the triangles' sides (ANY_SIDE: either side counts); returns 1 when it did. */
-static RF_LEAF_INLINE int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double t_min,
+static RF_INLINE_ALWAYS int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double t_min,
                             RfBvhHit *best, int mode)
 {
     int improved = 0;
@@ -382,8 +394,8 @@ static inline int cone_hit(const RfBvh *bvh, const RfBvhOther *o, const RfRay *r
 /* One item of an "others" leaf: its test by its kind, then one rule for a hit: 1 at any hit
  * (ANY: best->key is set), or when it is the new nearest (best takes its details). roots: a
  * sphere's roots when the caller has them (rf_sphere_roots4), NULL to compute them here. */
-static RF_LEAF_INLINE int other_item(const RfBvh *bvh, const RfBvhOther *o, const RfBvhRay *r, double t_min, RfBvhHit *best,
-                             RfBvhItemFn fn, void *ctx, int mode, const RfSphereRoots *roots)
+static RF_INLINE_ALWAYS int other_item(const RfBvh *bvh, const RfBvhOther *o, const RfBvhRay *r, double t_min,
+                                       RfBvhHit *best, RfBvhItemFn fn, void *ctx, int mode, const RfSphereRoots *roots)
 {
     double t;
     RfSphereRoots own;
@@ -442,10 +454,8 @@ static inline int traverse(const RfBvh *bvh, RfBvhRay *r, double t_min, RfBvhHit
 {
     if (bvh->node_count == 0)
         return 0;
-#if RF_BVH_AVX
     NodeRay nr;
     node_ray(r, &nr);
-#endif
     Entry stack[STACK];
     int top = 0, found = 0;
     const float tmin = rf__widen_down(t_min);
@@ -455,13 +465,7 @@ static inline int traverse(const RfBvh *bvh, RfBvhRay *r, double t_min, RfBvhHit
         if (REF_KIND(cur) == KIND_INNER) {
             const RfBvhNode *n = &bvh->nodes[REF_INDEX(cur)];
             float tn[WIDTH];
-            unsigned mask;
-#if RF_BVH_AVX
-            if (!bvh->scalar)
-                mask = node_test_avx(n, &nr, _mm256_set1_ps(tmin), _mm256_set1_ps(tmax), tn);
-            else
-#endif
-                mask = node_test_scalar(n, r, tmin, tmax, tn);
+            unsigned mask = node_test(bvh, n, r, &nr, tmin, tmax, tn);
             if (mask) {
                 int k = __builtin_ctz(mask);
                 mask &= mask - 1;
@@ -522,20 +526,6 @@ typedef struct {
     unsigned lanes;
 } Entry4;
 
-/* node_test_avx or node_test_scalar, as traverse picks them */
-static inline unsigned node_test(const RfBvh *bvh, const RfBvhNode *n, const RfBvhRay *r, const void *nr, float tmin,
-                                 float tmax, float *tn)
-{
-#if RF_BVH_AVX
-    if (!bvh->scalar)
-        return node_test_avx(n, nr, _mm256_set1_ps(tmin), _mm256_set1_ps(tmax), tn);
-#else
-    (void)nr;
-#endif
-    (void)bvh;
-    return node_test_scalar(n, r, tmin, tmax, tn);
-}
-
 /* An "others" leaf for the lanes of a packet: a sphere's roots for the four rays at once
  * (rf_sphere_roots4), then each lane's rule with its own limit; other items lane by lane. */
 static inline unsigned leaf_others4(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r, const RfRay4 *r4,
@@ -570,11 +560,7 @@ static unsigned traverse4(const RfBvh *bvh, RfBvhRay *r, unsigned active, const 
         return 0;
     RfRay4 r4;
     RfRay rays[4];
-#if RF_BVH_AVX
     NodeRay nr[4];
-#else
-    char nr[4][1];
-#endif
     float tmin[4], tmax[4];
     for (int l = 0; l < 4; l++) { /* an idle lane holds a copy of a working one: real numbers */
         int from = (active >> l) & 1 ? l : __builtin_ctz(active);
@@ -582,10 +568,8 @@ static unsigned traverse4(const RfBvh *bvh, RfBvhRay *r, unsigned active, const 
         rf_ray4_set(&r4, l, &rays[l]);
         tmin[l] = rf__widen_down(t_min[from]);
         tmax[l] = rf__widen_up(best[from].t);
-#if RF_BVH_AVX
         if ((active >> l) & 1)
             node_ray(&r[l], &nr[l]);
-#endif
     }
     Entry4 stack[STACK];
     int top = 0;

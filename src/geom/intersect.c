@@ -164,7 +164,8 @@ static inline void add_square4(__m256d h, double sgn, __m256d *s, __m256d *e)
     __m256d p = _mm256_mul_pd(g, hh);
     __m256d pe = _mm256_mul_pd(g, _mm256_fmsub_pd(h, h, hh));
     __m256d q = _mm256_add_pd(*s, p), z = _mm256_sub_pd(q, *s);
-    *e = _mm256_add_pd(*e, _mm256_add_pd(_mm256_add_pd(_mm256_sub_pd(*s, _mm256_sub_pd(q, z)), _mm256_sub_pd(p, z)), pe));
+    __m256d err = _mm256_add_pd(_mm256_sub_pd(*s, _mm256_sub_pd(q, z)), _mm256_sub_pd(p, z));
+    *e = _mm256_add_pd(*e, _mm256_add_pd(err, pe));
     *s = q;
 }
 

@@ -394,12 +394,20 @@ static void RF_KNAME(camera_rays)(const RfKernelJob *job, const RfRay rays[4], i
     }
 }
 
-/* Pixels x .. x + count - 1 (count <= 4) of row y at one sample each, through their centres
- * (rf_camera_ray's plane points, per row and column), in one group. */
+/* The camera ray through the centre of pixel (x, y): rf_camera_ray's plane point, from the
+ * coordinates computed once per row and column. */
+static inline RfRay RF_KNAME(centre_ray)(const RfKernelJob *job, int x, int y)
+{
+    const RfCamera *cam = &job->camera;
+    RfVec3 c = rf_vec3(job->column_x[x], job->row_y[y], -cam->d);
+    return rf_ray(cam->eye, rf_vec3_normalize(rf_camera_to_world(cam, c)));
+}
+
+/* Pixels x .. x + count - 1 (count <= 4) of row y at one sample each, through their centres, in
+ * one group. */
 static void RF_KNAME(centres)(const RfKernelJob *job, int x, int y, int count, int thread)
 {
     RfRenderStats *st = &job->per_thread[thread];
-    const RfCamera *cam = &job->camera;
     RfRay rays[4];
     RfPathSample ps[4];
     RfRgb c[4];
@@ -407,8 +415,7 @@ static void RF_KNAME(centres)(const RfKernelJob *job, int x, int y, int count, i
         RfPathSample p = {(uint64_t)y * (uint64_t)job->width + (uint64_t)(x + l), 0, 1, job->sampler,
                           job->shutter_open, job->motion ? job->motion[thread] : NULL, job->trace_log, NULL};
         ps[l] = p;
-        RfVec3 pc = rf_vec3(job->column_x[x + l], job->row_y[y], -cam->d);
-        rays[l] = rf_ray(cam->eye, rf_vec3_normalize(rf_camera_to_world(cam, pc)));
+        rays[l] = RF_KNAME(centre_ray)(job, x + l, y);
     }
     RF_KNAME(camera_rays)(job, rays, count, ps, st, rf_kernel_shadow_cache(job, thread), c);
     for (int l = 0; l < count; l++)
@@ -469,9 +476,8 @@ static void RF_KNAME(pixels)(const RfKernelJob *job, RfTile tile, int thread, in
             if (n == 1) {
                 if (RF_ON(RF_K_LENS | RF_K_MOTION) && (cam->aperture_radius > 0.0 || job->moving)) {
                     sum = RF_KNAME(camera_sample)(job, x + 0.5, y + 0.5, &ps, st, shadow_cache);
-                } else { /* the pixel centre: rf_camera_ray's plane point, computed per row and column */
-                    RfVec3 c = rf_vec3(job->column_x[x], job->row_y[y], -cam->d);
-                    RfRay ray = rf_ray(cam->eye, rf_vec3_normalize(rf_camera_to_world(cam, c)));
+                } else {
+                    RfRay ray = RF_KNAME(centre_ray)(job, x, y);
                     RF_KNAME(trace_sample)(&ps, x + 0.5, y + 0.5, &ray);
                     sum = RF_KNAME(camera_ray)(job, &ray, &ps, st, shadow_cache);
                 }

@@ -696,7 +696,8 @@ static int bvh_item(void *ctx, uint64_t key, const RfBvhRay *r, double t_min, do
 
 /* A level's unbounded items (planes), in key order, before its BVH: 1 when one is hit within
  * the limit (*t_lim, *key_lim), which it then becomes (a shadow query: q->occluder). */
-static inline int level_unbounded(const Level *lv, Query *q, const RfRay *rp, double t_min, double *t_lim, uint64_t *key_lim)
+static inline int level_unbounded(const Level *lv, Query *q, const RfRay *rp, double t_min, double *t_lim,
+                                  uint64_t *key_lim)
 {
     int found = 0;
     for (int u = 0; u < lv->unbounded_count; u++) {
@@ -722,7 +723,7 @@ static inline void bvh_hit_init(RfBvhHit *best, double t, uint64_t key)
 
 /* The details of the BVH's winner (a triangle, sphere or cone it tested itself) into q: the same
  * bits as the BVH's t. The caller's items have put theirs there already. */
-static inline __attribute__((always_inline)) void level_winner(Query *q, const RfBvhHit *best, const RfRay *rp)
+static RF_INLINE_ALWAYS void level_winner(Query *q, const RfBvhHit *best, const RfRay *rp)
 {
     if (!(best->tri || best->sphere || best->cone))
         return;
@@ -875,7 +876,7 @@ int rf_tracer_intersect(const RfTracer *t, const RfRay *ray, double t_min, doubl
 
 /* The surface hit of a nearest-hit query q of ray (§3.5, the normals of §3.6.3 and §4.9, the
  * point's error bound); returns its primitive. */
-static inline __attribute__((always_inline)) int surface_hit(const RfTracer *t, const Query *q, const RfRay *rp, RfSurfaceHit *out)
+static RF_INLINE_ALWAYS int surface_hit(const RfTracer *t, const Query *q, const RfRay *rp, RfSurfaceHit *out)
 {
     const RfRay ray = *rp;
     const RfScene *s = t->scene;
