@@ -4,7 +4,10 @@
  * the shadow rays refray's renderer shoots: from every primary hit whose geometric normal
  * (facing the ray) sees the light, from the hit point moved off the surface by refray's offset
  * policy, to the light. refray answers with rf_tracer_intersect / rf_tracer_occluded (double
- * precision, watertight), Embree 3 with rtcIntersect1 / rtcOccluded1 (single rays, float).
+ * precision, watertight), Embree 3 with rtcIntersect1 / rtcOccluded1 (single rays, float). The
+ * primary rays also go four at a time, four neighbouring pixels of a row as refray's renderer
+ * groups them at one sample: rf_tracer_intersect4 against Embree's rtcIntersect4 (each packet
+ * API against the other; refray's answers are checked against its single rays).
  * Times: the BVH build (the scene commit for Embree) and each ray pass, with 1 and 2 threads,
  * medians of --runs runs; the ratios are refray's throughput over Embree's (above 1: refray is
  * faster) and Embree's build time over refray's. Without Embree (built only when Debian's
@@ -86,6 +89,22 @@ static int refray_primary(void *ctx, int chunk, int thread)
     return 0;
 }
 
+/* the chunk's primary rays in groups of four consecutive ones (a short group at its end) */
+static int refray_primary4(void *ctx, int chunk, int thread)
+{
+    RefrayJob *j = ctx;
+    int lo = (int)((long long)j->set->count * chunk / CHUNKS), hi = (int)((long long)j->set->count * (chunk + 1) / CHUNKS);
+    const double t_min[4] = {0.0, 0.0, 0.0, 0.0};
+    (void)thread;
+    for (int i = lo; i < hi; i += 4) {
+        int n = hi - i < 4 ? hi - i : 4;
+        unsigned hit = rf_tracer_intersect4(j->tracer, &j->set->rays[i], (1u << n) - 1, t_min, &j->hits[i]);
+        for (int l = 0; l < n; l++)
+            j->set->answer[i + l] = (hit >> l) & 1 ? j->hits[i + l].prim : -1;
+    }
+    return 0;
+}
+
 static int refray_shadow(void *ctx, int chunk, int thread)
 {
     RefrayJob *j = ctx;
@@ -134,6 +153,33 @@ static int embree_primary(void *ctx, int chunk, int thread)
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(j->scene, &ic, &rh);
         j->set->answer[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1 : (int)rh.hit.primID;
+    }
+    return 0;
+}
+
+/* the same groups through rtcIntersect4 (an idle lane is marked invalid) */
+static int embree_primary4(void *ctx, int chunk, int thread)
+{
+    EmbreeJob *j = ctx;
+    int lo = (int)((long long)j->set->count * chunk / CHUNKS), hi = (int)((long long)j->set->count * (chunk + 1) / CHUNKS);
+    struct RTCIntersectContext ic;
+    rtcInitIntersectContext(&ic);
+    (void)thread;
+    for (int i = lo; i < hi; i += 4) {
+        int n = hi - i < 4 ? hi - i : 4, valid[4];
+        struct RTCRayHit4 rh;
+        for (int l = 0; l < 4; l++) {
+            struct RTCRay one = embree_ray(&j->set->rays[i + (l < n ? l : 0)], INFINITY);
+            valid[l] = l < n ? -1 : 0;
+            rh.ray.org_x[l] = one.org_x, rh.ray.org_y[l] = one.org_y, rh.ray.org_z[l] = one.org_z;
+            rh.ray.dir_x[l] = one.dir_x, rh.ray.dir_y[l] = one.dir_y, rh.ray.dir_z[l] = one.dir_z;
+            rh.ray.tnear[l] = one.tnear, rh.ray.tfar[l] = one.tfar, rh.ray.time[l] = one.time;
+            rh.ray.mask[l] = one.mask, rh.ray.id[l] = (unsigned)l, rh.ray.flags[l] = one.flags;
+            rh.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect4(valid, j->scene, &ic, &rh);
+        for (int l = 0; l < n; l++)
+            j->set->answer[i + l] = rh.hit.geomID[l] == RTC_INVALID_GEOMETRY_ID ? -1 : (int)rh.hit.primID[l];
     }
     return 0;
 }
@@ -287,6 +333,24 @@ int main(int argc, char **argv)
             times[r] = now() - s;
         }
         double rf_prim = median(times, runs);
+        /* groups of four: the same answers as the single rays, checked */
+        int *single = malloc(sizeof(int) * (size_t)prim.count);
+        if (!single) {
+            fprintf(stderr, "refray-mesh-bench: out of memory\n");
+            return 1;
+        }
+        memcpy(single, prim.answer, sizeof(int) * (size_t)prim.count);
+        for (int r = 0; r < runs; r++) {
+            double s = now();
+            rf_parallel_for(CHUNKS, th, refray_primary4, NULL, &rj);
+            times[r] = now() - s;
+        }
+        double rf_prim4 = median(times, runs);
+        if (memcmp(single, prim.answer, sizeof(int) * (size_t)prim.count) != 0) {
+            fprintf(stderr, "refray-mesh-bench: rf_tracer_intersect4 disagrees with rf_tracer_intersect\n");
+            return 1;
+        }
+        free(single);
         if (!shadow.rays) { /* the shadow rays of the renderer, from refray's hits */
             RaySet *set[2] = {&shadow, &shadow4};
             for (int k2 = 0; k2 < 2; k2++) {
@@ -327,8 +391,8 @@ int main(int argc, char **argv)
             occluded4_refray += shadow4.answer[i];
         }
         rf_tracer_free(tr);
-        double em_build = NAN, em_prim = NAN, em_shadow = NAN, em_shadow4 = NAN;
-        int hits_embree = -1, occluded_embree = -1, occluded4_embree = -1;
+        double em_build = NAN, em_prim = NAN, em_prim4 = NAN, em_shadow = NAN, em_shadow4 = NAN;
+        int hits_embree = -1, hits4_embree = -1, occluded_embree = -1, occluded4_embree = -1;
 #ifdef RF_HAVE_EMBREE
         {
             char cfg[64];
@@ -370,6 +434,18 @@ int main(int argc, char **argv)
                 times[r] = now() - s;
             }
             em_prim = median(times, runs);
+            hits_embree = 0;
+            for (int i = 0; i < prim.count; i++)
+                hits_embree += eprim.answer[i] >= 0;
+            for (int r = 0; r < runs; r++) {
+                double s = now();
+                rf_parallel_for(CHUNKS, th, embree_primary4, NULL, &ej);
+                times[r] = now() - s;
+            }
+            em_prim4 = median(times, runs);
+            hits4_embree = 0;
+            for (int i = 0; i < prim.count; i++)
+                hits4_embree += eprim.answer[i] >= 0;
             for (int r = 0; r < runs; r++) {
                 double s = now();
                 rf_parallel_for(CHUNKS, th, embree_shadow, NULL, &es);
@@ -382,9 +458,7 @@ int main(int argc, char **argv)
                 times[r] = now() - s;
             }
             em_shadow4 = median(times, runs);
-            hits_embree = occluded_embree = occluded4_embree = 0;
-            for (int i = 0; i < prim.count; i++)
-                hits_embree += eprim.answer[i] >= 0;
+            occluded_embree = occluded4_embree = 0;
             for (int i = 0; i < shadow.count; i++) {
                 occluded_embree += eshadow.answer[i];
                 occluded4_embree += eshadow4.answer[i];
@@ -401,6 +475,8 @@ int main(int argc, char **argv)
         printf("%-24s %8d %10.3f s %10.3f s %7.2fx\n", "build", th, rf_build, em_build, em_build / rf_build);
         printf("%-24s %8d %8.2f M/s %8.2f M/s %7.2fx\n", "primary rays", th, prim.count / rf_prim * 1e-6,
                prim.count / em_prim * 1e-6, em_prim / rf_prim);
+        printf("%-24s %8d %8.2f M/s %8.2f M/s %7.2fx\n", "primary, groups of 4", th, prim.count / rf_prim4 * 1e-6,
+               prim.count / em_prim4 * 1e-6, em_prim4 / rf_prim4);
         printf("%-24s %8d %8.2f M/s %8.2f M/s %7.2fx\n", "shadow rays", th, shadow.count / rf_shadow * 1e-6,
                shadow.count / em_shadow * 1e-6, em_shadow / rf_shadow);
         printf("%-24s %8d %8.2f M/s %8.2f M/s %7.2fx\n", "shadow rays, 1e-4 offset", th,
@@ -411,7 +487,7 @@ int main(int argc, char **argv)
         if (k == n_threads - 1) {
             printf("\nrays: %d primary (refray hits %d", prim.count, hits_refray);
             if (hits_embree >= 0)
-                printf(", Embree %d", hits_embree);
+                printf(", Embree %d, in groups of 4 %d", hits_embree, hits4_embree);
             printf("), %d shadow (refray occluded %d", shadow.count, occluded_refray);
             if (occluded_embree >= 0)
                 printf(", Embree %d", occluded_embree);
