@@ -192,7 +192,7 @@ static inline void node_ray(const RfBvhRay *r, NodeRay *nr) { (void)r, (void)nr;
 #endif
 
 /* node_test_avx or, with the scalar kernels, node_test_scalar */
-static inline unsigned node_test(const RfBvh *bvh, const RfBvhNode *n, const RfBvhRay *r, const NodeRay *nr,
+static RF_INLINE_ALWAYS unsigned node_test(const RfBvh *bvh, const RfBvhNode *n, const RfBvhRay *r, const NodeRay *nr,
                                  float tmin, float tmax, float *tn)
 {
 #if RF_BVH_AVX
