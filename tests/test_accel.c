@@ -160,7 +160,14 @@ static void t_accel_groups_vs_one_ray(void)
         int max = ray_budget(&s, 1500000L, 1200);
         RfRay *rays = malloc(sizeof *rays * (size_t)max);
         RfTestRng rng = {99 + i};
-        int n = scene_rays(&s, t[VECTOR], &rng, rays, max), bad = 0;
+        int n = scene_rays(&s, t[VECTOR], &rng, rays, max - 8) & ~3, bad = 0; /* whole groups */
+        /* and rays no one should send, two groups of them with ordinary rays between: NaN and
+         * infinite components, a zero direction */
+        const RfRay odd[4] = {{{NAN, 0, 0}, {0, 0, -1}}, {{0, 0, 0}, {0, NAN, 1}},
+                              {{0, 1, 0}, {0, 0, 0}}, {{0, 1, 0}, {INFINITY, 1, 0}}};
+        for (int k = 0; k < 8; k++)
+            rays[n + k] = k % 2 ? odd[k / 2] : rays[(k * 7) % (n > 0 ? n : 1)];
+        n += 8;
         for (int m = 0; m <= TWO_SIDED && !bad; m++)
             for (int k0 = 0; k0 + 4 <= n && !bad; k0 += 4) {
                 unsigned active = (unsigned)(k0 / 4) % 15u + 1u; /* 1 .. 15 in turn */

@@ -381,7 +381,7 @@ static RfRgb RF_KNAME(camera_ray)(const RfKernelJob *job, const RfRay *ray, cons
 static void RF_KNAME(camera_rays)(const RfKernelJob *job, const RfRay rays[4], int count, const RfPathSample ps[4],
                                   RfRenderStats *st, uint64_t *shadow_cache, RfRgb out[4])
 {
-    double t_min[4];
+    double t_min[4] = {0.0, 0.0, 0.0, 0.0}; /* idle lanes are not read */
     RfSurfaceHit h[4];
     for (int l = 0; l < count; l++)
         t_min[l] = RF_KNAME(hither_t)(job, &rays[l]);
