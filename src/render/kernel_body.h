@@ -341,6 +341,24 @@ static inline void RF_KNAME(trace_sample)(const RfPathSample *ps, double px, dou
     }
 }
 
+/* The camera ray of sample ps->k through image position (px, py) (pixel units, y down) and, with
+ * a thin lens (§3.10), through the sample's lens point (ps->lens_uv, or drawn here). */
+static inline RfRay RF_KNAME(lens_ray)(const RfKernelJob *job, double px, double py, const RfPathSample *ps)
+{
+    const RfCamera *cam = &job->camera;
+    double lens[2] = {0.0, 0.0};
+    if (RF_ON(RF_K_LENS) && cam->aperture_radius > 0.0) {
+        double own[2];
+        const double *uv = ps->lens_uv;
+        if (!uv) {
+            rf_sample_2d(ps->sampler, ps->k, ps->n, ps->pixel, RF_DIM_LENS, job->seed, own);
+            uv = own;
+        }
+        rf_warp_disk(uv[0], uv[1], &lens[0], &lens[1]);
+    }
+    return rf_camera_ray(cam, px, py, lens[0], lens[1]);
+}
+
 /* Where a camera ray starts: the hither plane, nothing nearer than `hither` along the view
  * axis -w. */
 static inline double RF_KNAME(hither_t)(const RfKernelJob *job, const RfRay *ray)
@@ -369,11 +387,9 @@ static RfRgb RF_KNAME(camera_ray)(const RfKernelJob *job, const RfRay *ray, cons
 }
 
 /* Camera rays in groups (stage 1 of the wavefront plan, docs/performance.md): whether this
- * kernel and render take them, a pinhole camera's rays at the scene's first keyframe. The
- * general kernel, the reference, traces one ray at a time. */
-#define RF_KGROUPS(job) \
-    (RF_KPARTS != RF_K_ALL && !(RF_ON(RF_K_LENS) && (job)->camera.aperture_radius > 0.0) && \
-     !(RF_ON(RF_K_MOTION) && (job)->motion))
+ * kernel and render take them, rays at the scene's first keyframe (nothing moves). The general
+ * kernel, the reference, traces one ray at a time. */
+#define RF_KGROUPS(job) (RF_KPARTS != RF_K_ALL && !(RF_ON(RF_K_MOTION) && (job)->motion))
 
 /* count (1-4) camera rays with their samples ps[l]: their nearest hits in one query
  * (rf_tracer_intersect4), then each shaded as camera_ray shades it, in their order; out[l] gets
@@ -428,23 +444,12 @@ static void RF_KNAME(centres)(const RfKernelJob *job, int x, int y, int count, i
 static RfRgb RF_KNAME(camera_sample)(const RfKernelJob *job, double px, double py, RfPathSample *ps,
                                      RfRenderStats *st, uint64_t *shadow_cache)
 {
-    const RfCamera *cam = &job->camera;
-    double lens[2] = {0.0, 0.0};
-    if (RF_ON(RF_K_LENS) && cam->aperture_radius > 0.0) {
-        double own[2];
-        const double *uv = ps->lens_uv;
-        if (!uv) {
-            rf_sample_2d(ps->sampler, ps->k, ps->n, ps->pixel, RF_DIM_LENS, job->seed, own);
-            uv = own;
-        }
-        rf_warp_disk(uv[0], uv[1], &lens[0], &lens[1]);
-    }
     if (RF_ON(RF_K_MOTION) && ps->motion) {
         ps->time = job->shutter_open + (job->shutter_close - job->shutter_open) *
                                            rf_sample_1d(ps->sampler, ps->k, ps->n, ps->pixel, RF_DIM_TIME, job->seed);
         rf_motion_state_set(ps->motion, ps->time);
     }
-    RfRay ray = rf_camera_ray(cam, px, py, lens[0], lens[1]);
+    RfRay ray = RF_KNAME(lens_ray)(job, px, py, ps);
     RF_KNAME(trace_sample)(ps, px, py, &ray);
     return RF_KNAME(camera_ray)(job, &ray, ps, st, shadow_cache);
 }
@@ -462,9 +467,10 @@ static void RF_KNAME(pixels)(const RfKernelJob *job, RfTile tile, int thread, in
     uint64_t *shadow_cache = rf_kernel_shadow_cache(job, thread);
     const RfCamera *cam = &job->camera;
     const int groups = RF_KGROUPS(job) && !missed;
+    const int pinhole = !(RF_ON(RF_K_LENS) && cam->aperture_radius > 0.0);
     for (int y = tile.y0; y < tile.y1; y++)
         for (int x = tile.x0; x < tile.x1; x++) {
-            if (n == 1 && groups) { /* the row's pixel centres, four at a time */
+            if (n == 1 && groups && pinhole) { /* the row's pixel centres, four at a time */
                 int count = tile.x1 - x < 4 ? tile.x1 - x : 4;
                 RF_KNAME(centres)(job, x, y, count, thread);
                 x += count - 1;
@@ -517,7 +523,8 @@ static void RF_KNAME(pixels)(const RfKernelJob *job, RfTile tile, int thread, in
                         for (int l = 0; l < count; l++) {
                             group[l] = ps;
                             group[l].k = (uint32_t)(k0 + l);
-                            rays[l] = rf_camera_ray(cam, px[l], py[l], 0.0, 0.0);
+                            group[l].lens_uv = through_lens ? lens_uv[j0 + l] : NULL;
+                            rays[l] = RF_KNAME(lens_ray)(job, px[l], py[l], &group[l]);
                         }
                         RF_KNAME(camera_rays)(job, rays, count, group, st, shadow_cache, c);
                     } else {
