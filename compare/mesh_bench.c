@@ -73,6 +73,17 @@ typedef struct {
 
 enum { CHUNKS = 256 };
 
+/* The median over `runs` passes of fn over the chunks of a ray set (times: room for runs). */
+static double timed_passes(int runs, int threads, RfTaskFn fn, void *job, double *times)
+{
+    for (int r = 0; r < runs; r++) {
+        double s = now();
+        rf_parallel_for(CHUNKS, threads, fn, NULL, job);
+        times[r] = now() - s;
+    }
+    return median(times, runs);
+}
+
 typedef struct {
     const RfTracer *tracer;
     const RaySet *set;
@@ -327,12 +338,7 @@ int main(int argc, char **argv)
         }
         double rf_build = median(times, runs);
         RefrayJob rj = {tr, &prim, hits};
-        for (int r = 0; r < runs; r++) {
-            double s = now();
-            rf_parallel_for(CHUNKS, th, refray_primary, NULL, &rj);
-            times[r] = now() - s;
-        }
-        double rf_prim = median(times, runs);
+        double rf_prim = timed_passes(runs, th, refray_primary, &rj, times);
         /* groups of four: the same answers as the single rays, checked */
         int *single = malloc(sizeof(int) * (size_t)prim.count);
         if (!single) {
@@ -340,12 +346,7 @@ int main(int argc, char **argv)
             return 1;
         }
         memcpy(single, prim.answer, sizeof(int) * (size_t)prim.count);
-        for (int r = 0; r < runs; r++) {
-            double s = now();
-            rf_parallel_for(CHUNKS, th, refray_primary4, NULL, &rj);
-            times[r] = now() - s;
-        }
-        double rf_prim4 = median(times, runs);
+        double rf_prim4 = timed_passes(runs, th, refray_primary4, &rj, times);
         if (memcmp(single, prim.answer, sizeof(int) * (size_t)prim.count) != 0) {
             fprintf(stderr, "refray-mesh-bench: rf_tracer_intersect4 disagrees with rf_tracer_intersect\n");
             return 1;
@@ -378,12 +379,7 @@ int main(int argc, char **argv)
         double rf_shadow = 0, rf_shadow4 = 0;
         for (int k2 = 0; k2 < 2; k2++) {
             RefrayJob sj = {tr, k2 ? &shadow4 : &shadow, NULL};
-            for (int r = 0; r < runs; r++) {
-                double s = now();
-                rf_parallel_for(CHUNKS, th, refray_shadow, NULL, &sj);
-                times[r] = now() - s;
-            }
-            *(k2 ? &rf_shadow4 : &rf_shadow) = median(times, runs);
+            *(k2 ? &rf_shadow4 : &rf_shadow) = timed_passes(runs, th, refray_shadow, &sj, times);
         }
         occluded_refray = occluded4_refray = 0;
         for (int i = 0; i < shadow.count; i++) {
@@ -428,36 +424,16 @@ int main(int argc, char **argv)
             eshadow.answer = malloc(sizeof(int) * (size_t)(shadow.count + 1));
             eshadow4.answer = malloc(sizeof(int) * (size_t)(shadow.count + 1));
             EmbreeJob ej = {scene, &eprim}, es = {scene, &eshadow}, es4 = {scene, &eshadow4};
-            for (int r = 0; r < runs; r++) {
-                double s = now();
-                rf_parallel_for(CHUNKS, th, embree_primary, NULL, &ej);
-                times[r] = now() - s;
-            }
-            em_prim = median(times, runs);
+            em_prim = timed_passes(runs, th, embree_primary, &ej, times);
             hits_embree = 0;
             for (int i = 0; i < prim.count; i++)
                 hits_embree += eprim.answer[i] >= 0;
-            for (int r = 0; r < runs; r++) {
-                double s = now();
-                rf_parallel_for(CHUNKS, th, embree_primary4, NULL, &ej);
-                times[r] = now() - s;
-            }
-            em_prim4 = median(times, runs);
+            em_prim4 = timed_passes(runs, th, embree_primary4, &ej, times);
             hits4_embree = 0;
             for (int i = 0; i < prim.count; i++)
                 hits4_embree += eprim.answer[i] >= 0;
-            for (int r = 0; r < runs; r++) {
-                double s = now();
-                rf_parallel_for(CHUNKS, th, embree_shadow, NULL, &es);
-                times[r] = now() - s;
-            }
-            em_shadow = median(times, runs);
-            for (int r = 0; r < runs; r++) {
-                double s = now();
-                rf_parallel_for(CHUNKS, th, embree_shadow, NULL, &es4);
-                times[r] = now() - s;
-            }
-            em_shadow4 = median(times, runs);
+            em_shadow = timed_passes(runs, th, embree_shadow, &es, times);
+            em_shadow4 = timed_passes(runs, th, embree_shadow, &es4, times);
             occluded_embree = occluded4_embree = 0;
             for (int i = 0; i < shadow.count; i++) {
                 occluded_embree += eshadow.answer[i];
