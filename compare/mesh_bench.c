@@ -73,6 +73,9 @@ typedef struct {
 
 enum { CHUNKS = 256 };
 
+/* The first ray of chunk c of a ray set (c = CHUNKS: its end). */
+static int chunk_start(const RaySet *set, int c) { return (int)((long long)set->count * c / CHUNKS); }
+
 /* The median over `runs` passes of fn over the chunks of a ray set (times: room for runs). */
 static double timed_passes(int runs, int threads, RfTaskFn fn, void *job, double *times)
 {
@@ -93,7 +96,7 @@ typedef struct {
 static int refray_primary(void *ctx, int chunk, int thread)
 {
     RefrayJob *j = ctx;
-    int lo = (int)((long long)j->set->count * chunk / CHUNKS), hi = (int)((long long)j->set->count * (chunk + 1) / CHUNKS);
+    int lo = chunk_start(j->set, chunk), hi = chunk_start(j->set, chunk + 1);
     (void)thread;
     for (int i = lo; i < hi; i++)
         j->set->answer[i] = rf_tracer_intersect(j->tracer, &j->set->rays[i], 0.0, HUGE_VAL, &j->hits[i]);
@@ -104,7 +107,7 @@ static int refray_primary(void *ctx, int chunk, int thread)
 static int refray_primary4(void *ctx, int chunk, int thread)
 {
     RefrayJob *j = ctx;
-    int lo = (int)((long long)j->set->count * chunk / CHUNKS), hi = (int)((long long)j->set->count * (chunk + 1) / CHUNKS);
+    int lo = chunk_start(j->set, chunk), hi = chunk_start(j->set, chunk + 1);
     const double t_min[4] = {0.0, 0.0, 0.0, 0.0};
     (void)thread;
     for (int i = lo; i < hi; i += 4) {
@@ -119,7 +122,7 @@ static int refray_primary4(void *ctx, int chunk, int thread)
 static int refray_shadow(void *ctx, int chunk, int thread)
 {
     RefrayJob *j = ctx;
-    int lo = (int)((long long)j->set->count * chunk / CHUNKS), hi = (int)((long long)j->set->count * (chunk + 1) / CHUNKS);
+    int lo = chunk_start(j->set, chunk), hi = chunk_start(j->set, chunk + 1);
     (void)thread;
     for (int i = lo; i < hi; i++)
         j->set->answer[i] = rf_tracer_occluded(j->tracer, &j->set->rays[i], 0.0, j->set->t_max[i]);
@@ -154,7 +157,7 @@ static struct RTCRay embree_ray(const RfRay *r, float tfar)
 static int embree_primary(void *ctx, int chunk, int thread)
 {
     EmbreeJob *j = ctx;
-    int lo = (int)((long long)j->set->count * chunk / CHUNKS), hi = (int)((long long)j->set->count * (chunk + 1) / CHUNKS);
+    int lo = chunk_start(j->set, chunk), hi = chunk_start(j->set, chunk + 1);
     struct RTCIntersectContext ic;
     rtcInitIntersectContext(&ic);
     (void)thread;
@@ -172,7 +175,7 @@ static int embree_primary(void *ctx, int chunk, int thread)
 static int embree_primary4(void *ctx, int chunk, int thread)
 {
     EmbreeJob *j = ctx;
-    int lo = (int)((long long)j->set->count * chunk / CHUNKS), hi = (int)((long long)j->set->count * (chunk + 1) / CHUNKS);
+    int lo = chunk_start(j->set, chunk), hi = chunk_start(j->set, chunk + 1);
     struct RTCIntersectContext ic;
     rtcInitIntersectContext(&ic);
     (void)thread;
@@ -198,7 +201,7 @@ static int embree_primary4(void *ctx, int chunk, int thread)
 static int embree_shadow(void *ctx, int chunk, int thread)
 {
     EmbreeJob *j = ctx;
-    int lo = (int)((long long)j->set->count * chunk / CHUNKS), hi = (int)((long long)j->set->count * (chunk + 1) / CHUNKS);
+    int lo = chunk_start(j->set, chunk), hi = chunk_start(j->set, chunk + 1);
     struct RTCIntersectContext ic;
     rtcInitIntersectContext(&ic);
     (void)thread;
