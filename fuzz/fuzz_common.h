@@ -202,8 +202,21 @@ static inline void rf_fuzz_scene(const RfScene *s)
             ro.light_samples = 4;
     RfImage img = {0, 0, 0, NULL};
     RfRenderStats st;
-    if (rf_render(s, &ro, &img, &st) == RF_OK)
+    if (rf_render(s, &ro, &img, &st) == RF_OK) {
         (void)rf_kernel_name(st.kernel, err, sizeof err);
+        /* the rule of the specialised kernels (issue 11): the general kernel's image, bit for
+         * bit, whatever the scene; a difference is a finding */
+        RfRenderOptions go = ro;
+        RfImage ref = {0, 0, 0, NULL};
+        go.kernel = rf_kernel_parse("general");
+        if (go.kernel && st.kernel != go.kernel && rf_render(s, &go, &ref, &st) == RF_OK &&
+            (ref.width != img.width || ref.height != img.height || ref.channels != img.channels ||
+             memcmp(ref.data, img.data, sizeof(float) * (size_t)img.channels * (size_t)img.width * (size_t)img.height) != 0)) {
+            fprintf(stderr, "fuzz: the specialised kernel's image differs from the general kernel's\n");
+            abort();
+        }
+        rf_image_free(&ref);
+    }
     rf_image_free(&img);
     /* the general kernel, one sample, no adaptive sampling, as a preview (non-finite samples
      * counted, not an error): the same image, another code path */
