@@ -1,7 +1,7 @@
 /* The specialised render kernels (issue 11): every compiled kernel that has the parts a scene
  * needs renders it bit for bit as the general kernel does, for every shipped scene and the SPD
- * scenes, at 1, 4 and 6 samples and in --local mode (the specialised kernels trace camera rays
- * in groups of four, the general one ray by ray); the choice leaves out what a scene does not
+ * scenes, at 1, 4 and 6 samples, with adaptive supersampling and in --local mode (the
+ * specialised kernels trace camera rays in groups of four, the general one ray by ray); the choice leaves out what a scene does not
  * need, and refuses a kernel that lacks what it needs. */
 #include <glob.h>
 #include <math.h>
@@ -14,9 +14,16 @@
 #include "rf_test.h"
 #include "rf_test_render.h"
 
+/* samples < 0: §3.9 adaptive supersampling (its centres and its quadrants go in groups too) */
 static int render(const RfScene *s, unsigned kernel, int samples, int local, RfImage *img, RfRenderStats *st)
 {
     RfRenderOptions o = rf_render_options_default();
+    if (samples < 0) {
+        o.adaptive = 1;
+        o.adaptive_threshold = 0.02;
+        o.adaptive_depth = 2;
+        samples = 1;
+    }
     o.width = 41; /* odd: the last group of camera rays in a row is short */
     o.height = 30;
     o.threads = 2;
@@ -35,9 +42,9 @@ static void t_kernels_identical(void)
         RfScene s;
         if (!rf_test_load_scene(g.gl_pathv[i], &s))
             continue;
-        /* samples, local; 6 samples: a group of four camera rays and one of two */
-        const int modes[4][2] = {{1, 0}, {4, 0}, {6, 0}, {1, 1}};
-        for (int m = 0; m < 4; m++) {
+        /* samples, local; 6 samples: a group of four camera rays and one of two; -1: adaptive */
+        const int modes[5][2] = {{1, 0}, {4, 0}, {6, 0}, {1, 1}, {-1, 0}};
+        for (int m = 0; m < 5; m++) {
             RfImage ref;
             RfRenderStats st;
             if (!render(&s, rf_kernel_all_parts(), modes[m][0], modes[m][1], &ref, &st)) {
@@ -47,7 +54,8 @@ static void t_kernels_identical(void)
             RF_CHECK_EQ_INT(st.kernel, rf_kernel_all_parts());
             /* every other compiled kernel; those that lack a needed part must refuse */
             RfRenderOptions o = rf_render_options_default();
-            o.samples = modes[m][0];
+            o.samples = modes[m][0] < 0 ? 1 : modes[m][0];
+            o.adaptive = modes[m][0] < 0 ? 1 : o.adaptive;
             o.local_only = modes[m][1];
             unsigned chosen = rf_render_kernel(&s, &o);
             for (int k = 0; k < rf_kernel_count_compiled(); k++) {
@@ -68,8 +76,8 @@ static void t_kernels_identical(void)
         rf_scene_free(&s);
     }
     globfree(&g);
-    RF_CHECK(compared >= 80); /* 20 scenes, four modes, and the specialised ones again */
-    RF_CHECK(specialised >= 12); /* tree, tetra, torus.obj: no highlights, four modes each */
+    RF_CHECK(compared >= 100); /* 20 scenes, five modes, and the specialised ones again */
+    RF_CHECK(specialised >= 15); /* tree, tetra, torus.obj: no highlights, five modes each */
 }
 
 /* What the choice leaves out, and what it must not. */

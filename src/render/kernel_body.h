@@ -454,6 +454,22 @@ static RfRgb RF_KNAME(camera_sample)(const RfKernelJob *job, double px, double p
     return RF_KNAME(camera_ray)(job, &ray, ps, st, shadow_cache);
 }
 
+/* count (1-4) camera samples at image positions (px[l], py[l]) with their paths ps[l]: in one
+ * group where the kernel and the render take groups (camera_rays), else one at a time; out[l]
+ * is camera_sample's colour either way, and ps[l] is left as camera_sample leaves it. */
+static void RF_KNAME(samples)(const RfKernelJob *job, const double *px, const double *py, int count,
+                              RfPathSample *ps, RfRenderStats *st, uint64_t *shadow_cache, RfRgb *out)
+{
+    if (RF_KGROUPS(job)) {
+        RfRay rays[4];
+        for (int l = 0; l < count; l++)
+            rays[l] = RF_KNAME(lens_ray)(job, px[l], py[l], &ps[l]);
+        RF_KNAME(camera_rays)(job, rays, count, ps, st, shadow_cache, out);
+        return;
+    }
+    for (int l = 0; l < count; l++)
+        out[l] = RF_KNAME(camera_sample)(job, px[l], py[l], &ps[l], st, shadow_cache);
+}
 
 /* The value of a pixel from its samples (§3.9): the box filter's mean, or a filter's weighted
  * mean over samples drawn in [-radius, radius]^2 around the centre. One sample: the centre.
@@ -517,26 +533,20 @@ static void RF_KNAME(pixels)(const RfKernelJob *job, RfTile tile, int thread, in
                             px[l] = x + 0.5 + ox, py[l] = y + 0.5 + oy;
                         }
                     }
-                    if (groups) {
-                        RfRay rays[4];
+                    if (missed) {
+                        for (int l = 0; l < count; l++) {
+                            c[l] = job->background;
+                            st->primary_rays++;
+                        }
+                    } else {
                         RfPathSample group[4];
                         for (int l = 0; l < count; l++) {
                             group[l] = ps;
                             group[l].k = (uint32_t)(k0 + l);
                             group[l].lens_uv = through_lens ? lens_uv[j0 + l] : NULL;
-                            rays[l] = RF_KNAME(lens_ray)(job, px[l], py[l], &group[l]);
                         }
-                        RF_KNAME(camera_rays)(job, rays, count, group, st, shadow_cache, c);
-                    } else {
-                        for (int l = 0; l < count; l++) {
-                            ps.k = (uint32_t)(k0 + l);
-                            ps.lens_uv = through_lens ? lens_uv[j0 + l] : NULL;
-                            c[l] = job->background;
-                            if (missed)
-                                st->primary_rays++;
-                            else
-                                c[l] = RF_KNAME(camera_sample)(job, px[l], py[l], &ps, st, shadow_cache);
-                        }
+                        RF_KNAME(samples)(job, px, py, count, group, st, shadow_cache, c);
+                        ps = group[count - 1];
                     }
                     for (int l = 0; l < count; l++) {
                         sum = rf_rgb_add(sum, c[l]);
@@ -588,11 +598,20 @@ static int RF_KNAME(adaptive_centres)(void *ctx, RfTile tile, int thread)
     RfRenderStats *st = &job->per_thread[thread];
     uint64_t *shadow_cache = rf_kernel_shadow_cache(job, thread);
     for (int y = tile.y0; y < tile.y1; y++)
-        for (int x = tile.x0; x < tile.x1; x++) {
-            RfPathSample ps = {(uint64_t)y * (uint64_t)job->width + (uint64_t)x, 0, 1, RF_SAMPLER_RANDOM,
-                               job->shutter_open, job->motion ? job->motion[thread] : NULL, job->trace_log, NULL};
-            RfRgb c = RF_KNAME(camera_sample)(job, x + 0.5, y + 0.5, &ps, st, shadow_cache);
-            job->centres[rf_kernel_centre(job, x, y)] = c;
+        for (int x0 = tile.x0; x0 < tile.x1; x0 += 4) { /* four pixels at a time */
+            int count = tile.x1 - x0 < 4 ? tile.x1 - x0 : 4;
+            double px[4], py[4];
+            RfPathSample ps[4];
+            RfRgb c[4];
+            for (int l = 0; l < count; l++) {
+                RfPathSample p = {(uint64_t)y * (uint64_t)job->width + (uint64_t)(x0 + l), 0, 1, RF_SAMPLER_RANDOM,
+                                  job->shutter_open, job->motion ? job->motion[thread] : NULL, job->trace_log, NULL};
+                ps[l] = p;
+                px[l] = x0 + l + 0.5, py[l] = y + 0.5;
+            }
+            RF_KNAME(samples)(job, px, py, count, ps, st, shadow_cache, c);
+            for (int l = 0; l < count; l++)
+                job->centres[rf_kernel_centre(job, x0 + l, y)] = c[l];
         }
     return 0;
 }
@@ -604,12 +623,15 @@ static RfRgb RF_KNAME(adaptive_square)(const RfKernelJob *job, double x0, double
                                        RfRgb parent, RfPathSample *ps, RfRenderStats *st, uint64_t *shadow_cache)
 {
     RfRgb q[4], sum = rf_rgb(0, 0, 0);
-    double h = 0.5 * size;
+    double h = 0.5 * size, px[4], py[4];
+    RfPathSample quad[4];
     for (int i = 0; i < 4; i++) {
-        ps->k++;
-        q[i] = RF_KNAME(camera_sample)(job, x0 + (i & 1) * h + 0.5 * h, y0 + (i >> 1) * h + 0.5 * h, ps, st,
-                                       shadow_cache);
+        quad[i] = *ps;
+        quad[i].k = ps->k + 1 + (uint32_t)i;
+        px[i] = x0 + (i & 1) * h + 0.5 * h, py[i] = y0 + (i >> 1) * h + 0.5 * h;
     }
+    RF_KNAME(samples)(job, px, py, 4, quad, st, shadow_cache, q);
+    *ps = quad[3];
     for (int i = 0; i < 4; i++) {
         if (level < job->adaptive_depth && rf_kernel_rgb_diff(q[i], parent) > job->adaptive_threshold)
             q[i] = RF_KNAME(adaptive_square)(job, x0 + (i & 1) * h, y0 + (i >> 1) * h, h, level + 1, q[i], ps, st,
