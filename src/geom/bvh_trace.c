@@ -193,7 +193,7 @@ static inline void node_ray(const RfBvhRay *r, NodeRay *nr) { (void)r, (void)nr;
 
 /* node_test_avx or, with the scalar kernels, node_test_scalar */
 static RF_INLINE_ALWAYS unsigned node_test(const RfBvh *bvh, const RfBvhNode *n, const RfBvhRay *r, const NodeRay *nr,
-                                 float tmin, float tmax, float *tn)
+                                           float tmin, float tmax, float *tn)
 {
 #if RF_BVH_AVX
     if (!bvh->scalar)
@@ -295,8 +295,8 @@ enum { NEAREST = 0, ANY = 1, ANY_SIDE = 2 };
 /* The leaf's triangles: the float filter, then the double watertight test for what is left.
  * ANY: returns 1 at the first hit in [t_min, best->t). Otherwise improves *best by the
  * (t, key) rule and the triangles' sides (ANY_SIDE: either side counts); returns 1 when it did. */
-static RF_INLINE_ALWAYS int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double t_min,
-                            RfBvhHit *best, int mode)
+static RF_INLINE_ALWAYS int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *r, double t_min, RfBvhHit *best,
+                                      int mode)
 {
     int improved = 0;
     if (!r->tri_ready)
