@@ -247,7 +247,7 @@ static void t_accel_sphere_lanes(void)
             rf_ray4_set(&r4, l, &rays[l]);
         }
         RfSphereRoots got[4];
-        unsigned ok = rf_sphere_roots4(&r4, rays, sp, got);
+        unsigned ok = rf_sphere_roots4(&r4, sp, got);
         for (int l = 0; l < 4; l++) {
             RfSphereRoots want;
             int w = rf_sphere_roots(&rays[l], sp, &want);

@@ -57,11 +57,15 @@ static inline void rf_ray4_set(RfRay4 *r4, int lane, const RfRay *ray)
     r4->ox[lane] = ray->origin.x, r4->oy[lane] = ray->origin.y, r4->oz[lane] = ray->origin.z;
     r4->dx[lane] = ray->dir.x, r4->dy[lane] = ray->dir.y, r4->dz[lane] = ray->dir.z;
 }
-/* rf_sphere_roots for the four rays of r4 (rays: the same rays): bit l of the result is its
- * return for ray l, out[l] the roots when the bit is set. In four double lanes of AVX2 where the
- * build has them, each lane the scalar routine's operations in its order (the same bits); the
- * rare cases (a tangent, a = 0, a NaN root) go to rf_sphere_roots. */
-unsigned rf_sphere_roots4(const RfRay4 *r4, const RfRay rays[4], const RfSphere *s, RfSphereRoots out[4]);
+static inline RfRay rf_ray4_get(const RfRay4 *r4, int lane)
+{
+    return rf_ray(rf_vec3(r4->ox[lane], r4->oy[lane], r4->oz[lane]), rf_vec3(r4->dx[lane], r4->dy[lane], r4->dz[lane]));
+}
+/* rf_sphere_roots for the four rays of r4: bit l of the result is its return for ray l, out[l]
+ * the roots when the bit is set. In four double lanes of AVX2 where the build has them, each
+ * lane the scalar routine's operations in its order (the same bits); the rare cases (a tangent,
+ * a = 0, a NaN root) go to rf_sphere_roots. */
+unsigned rf_sphere_roots4(const RfRay4 *r4, const RfSphere *s, RfSphereRoots out[4]);
 /* The smallest root of t[0] <= t[1] in [t_min, t_max): 0 (none), 1 (near) or 2 (far); NaN is
  * in no range. rf_intersect_sphere's choice, for callers that need the root alone. */
 static inline int rf_sphere_pick_root(const double t[2], double t_min, double t_max)

@@ -529,8 +529,8 @@ typedef struct {
 /* An "others" leaf for the lanes of a packet: a sphere's roots for the four rays at once
  * (rf_sphere_roots4), then each lane's rule with its own limit; other items lane by lane. */
 static inline unsigned leaf_others4(const RfBvh *bvh, uint32_t ref, const RfBvhRay *r, const RfRay4 *r4,
-                                    const RfRay *rays, unsigned lanes, const double *t_min, RfBvhHit *best,
-                                    RfBvhItemFn fn, void *const *ctx, int mode)
+                                    unsigned lanes, const double *t_min, RfBvhHit *best, RfBvhItemFn fn,
+                                    void *const *ctx, int mode)
 {
     unsigned improved = 0;
     const RfBvhOther *o = &bvh->others[REF_FIRST(ref)], *end = o + REF_COUNT(ref);
@@ -538,7 +538,7 @@ static inline unsigned leaf_others4(const RfBvh *bvh, uint32_t ref, const RfBvhR
         RfSphereRoots roots[4];
         unsigned todo = lanes;
         if (o->kind == RF_BVH_SPHERE)
-            todo &= rf_sphere_roots4(r4, rays, &o->u.sphere, roots);
+            todo &= rf_sphere_roots4(r4, &o->u.sphere, roots);
         for (; todo; todo &= todo - 1) {
             int l = __builtin_ctz(todo);
             if (other_item(bvh, o, &r[l], t_min[l], &best[l], fn, ctx[l], mode,
@@ -559,13 +559,11 @@ static unsigned traverse4(const RfBvh *bvh, RfBvhRay *r, unsigned active, const 
     if (bvh->node_count == 0 || !active)
         return 0;
     RfRay4 r4;
-    RfRay rays[4];
     NodeRay nr[4];
     float tmin[4], tmax[4];
     for (int l = 0; l < 4; l++) { /* an idle lane holds a copy of a working one: real numbers */
         int from = (active >> l) & 1 ? l : __builtin_ctz(active);
-        rays[l] = r[from].ray;
-        rf_ray4_set(&r4, l, &rays[l]);
+        rf_ray4_set(&r4, l, &r[from].ray);
         tmin[l] = rf__widen_down(t_min[from]);
         tmax[l] = rf__widen_up(best[from].t);
         if ((active >> l) & 1)
@@ -617,7 +615,7 @@ static unsigned traverse4(const RfBvh *bvh, RfBvhRay *r, unsigned active, const 
                     hit |= (unsigned)leaf_tris(bvh, cur, &r[l], t_min[l], &best[l], mode) << l;
                 }
             } else {
-                hit = leaf_others4(bvh, cur, r, &r4, rays, lanes, t_min, best, fn, ctx, mode);
+                hit = leaf_others4(bvh, cur, r, &r4, lanes, t_min, best, fn, ctx, mode);
             }
             found |= hit;
             for (; hit; hit &= hit - 1) {

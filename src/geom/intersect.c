@@ -175,7 +175,7 @@ static inline __m256d dot4(__m256d ax, __m256d ay, __m256d az, __m256d bx, __m25
     return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(ax, bx), _mm256_mul_pd(ay, by)), _mm256_mul_pd(az, bz));
 }
 
-unsigned rf_sphere_roots4(const RfRay4 *r4, const RfRay rays[4], const RfSphere *s, RfSphereRoots out[4])
+unsigned rf_sphere_roots4(const RfRay4 *r4, const RfSphere *s, RfSphereRoots out[4])
 {
     /* sphere_parts */
     __m256d dx = _mm256_loadu_pd(r4->dx), dy = _mm256_loadu_pd(r4->dy), dz = _mm256_loadu_pd(r4->dz);
@@ -223,18 +223,20 @@ unsigned rf_sphere_roots4(const RfRay4 *r4, const RfRay rays[4], const RfSphere 
     }
     for (unsigned m = odd; m; m &= m - 1) {
         int l = __builtin_ctz(m);
-        if (!rf_sphere_roots(&rays[l], s, &out[l]))
+        RfRay ray = rf_ray4_get(r4, l);
+        if (!rf_sphere_roots(&ray, s, &out[l]))
             real &= ~(1u << l);
     }
     return real;
 }
 #else
-unsigned rf_sphere_roots4(const RfRay4 *r4, const RfRay rays[4], const RfSphere *s, RfSphereRoots out[4])
+unsigned rf_sphere_roots4(const RfRay4 *r4, const RfSphere *s, RfSphereRoots out[4])
 {
-    (void)r4;
     unsigned real = 0;
-    for (int l = 0; l < 4; l++)
-        real |= (unsigned)rf_sphere_roots(&rays[l], s, &out[l]) << l;
+    for (int l = 0; l < 4; l++) {
+        RfRay ray = rf_ray4_get(r4, l);
+        real |= (unsigned)rf_sphere_roots(&ray, s, &out[l]) << l;
+    }
     return real;
 }
 #endif

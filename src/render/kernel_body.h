@@ -546,7 +546,6 @@ static void RF_KNAME(pixels)(const RfKernelJob *job, RfTile tile, int thread, in
                             group[l].lens_uv = through_lens ? lens_uv[j0 + l] : NULL;
                         }
                         RF_KNAME(samples)(job, px, py, count, group, st, shadow_cache, c);
-                        ps = group[count - 1];
                     }
                     for (int l = 0; l < count; l++) {
                         sum = rf_rgb_add(sum, c[l]);

@@ -971,17 +971,13 @@ unsigned rf_tracer_intersect4(const RfTracer *t, const RfRay rays[4], unsigned a
     RfBvhRay br[4];
     RfBvhHit best[4];
     void *ctx[4];
-    double bt[4];
-    uint64_t bk[4];
     for (unsigned s = active; s; s &= s - 1) {
         int l = __builtin_ctz(s);
         query_init(&q[l], t, 0, t->opt.two_sided, NULL);
         ctx[l] = &q[l];
         ray[l] = rf_ray_read(&rays[l]);
-        bt[l] = HUGE_VAL;
-        bk[l] = 0;
-        hit |= (unsigned)level_unbounded(lv, &q[l], &ray[l], t_min[l], &bt[l], &bk[l]) << l;
-        bvh_hit_init(&best[l], bt[l], bk[l]);
+        bvh_hit_init(&best[l], HUGE_VAL, 0); /* the planes' nearest hit is where the BVH's walk starts */
+        hit |= (unsigned)level_unbounded(lv, &q[l], &ray[l], t_min[l], &best[l].t, &best[l].key) << l;
         rf_bvh_ray_init(&lv->bvh, &ray[l], &br[l]);
     }
     hit |= rf_bvh_nearest4(&lv->bvh, br, active, t_min, best, bvh_item, ctx, t->opt.two_sided);

@@ -59,7 +59,7 @@ int main(void)
             ok[i] = rf_sphere_roots(&rays[i], &sph, &ref[i]);
         double t1 = now();
         for (int i = 0; i < N / 4; i++)
-            got_ok[i] = rf_sphere_roots4(&r4[i], &rays[4 * i], &sph, &got[4 * i]);
+            got_ok[i] = rf_sphere_roots4(&r4[i], &sph, &got[4 * i]);
         double t2 = now();
         best1 = t1 - t0 < best1 ? t1 - t0 : best1;
         best4 = t2 - t1 < best4 ? t2 - t1 : best4;
