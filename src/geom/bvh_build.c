@@ -313,8 +313,8 @@ static int halve(const Builder *b, int first, int count, Info *left, Info *right
 static int split(Builder *b, int first, int count, int depth, const Info *in, Info *left, Info *right)
 {
     int leaf_ok = count <= MAX_LEAF;
-    if (count == 1)
-        return 0;
+    if (count == 1 || (count <= LANES && in->nt == count))
+        return 0; /* one block: its cost 1 is below a node's (COST_NODE) alone */
     if (depth > SAH_DEPTH)
         return leaf_ok ? 0 : halve(b, first, count, left, right);
     Binner bn;
@@ -330,24 +330,18 @@ static int split(Builder *b, int first, int count, int depth, const Info *in, In
     bn.cmin[3] = bn.scale[3] = 0.0f;
     if (!any_axis) /* every centroid coincides */
         return leaf_ok ? 0 : halve(b, first, count, left, right);
-    Bins bins2[2], bins;
-    if (count >= PAR_BIN && b->threads > 1) {
-        Bins *part = malloc(sizeof *part * 2 * (size_t)b->threads);
+    Bins bins2[2], *bins = bins2, *part = NULL; /* merged in place: a Bins is 3.8 KB */
+    if (count >= PAR_BIN && b->threads > 1 && (part = malloc(sizeof *part * 2 * (size_t)b->threads))) {
         BinJob j = {b, &bn, first, count, b->threads, part};
-        if (part && rf_parallel_for(b->threads, b->threads, bin_chunk, NULL, &j) == RF_OK) {
-            bins = part[0];
+        if (rf_parallel_for(b->threads, b->threads, bin_chunk, NULL, &j) == RF_OK) {
+            bins = part;
             for (int t = 1; t < 2 * b->threads; t++)
-                bins_merge(&bins, &part[t], bn.bins);
-        } else {
-            bin_range(b->refs, b->ids, first, first + count, &bn, bins2);
-            bins = bins2[0];
-            bins_merge(&bins, &bins2[1], bn.bins);
+                bins_merge(bins, &part[t], bn.bins);
         }
-        free(part);
-    } else {
+    }
+    if (bins == bins2) {
         bin_range(b->refs, b->ids, first, first + count, &bn, bins2);
-        bins = bins2[0];
-        bins_merge(&bins, &bins2[1], bn.bins);
+        bins_merge(bins, &bins2[1], bn.bins);
     }
     /* sweep each axis: the cost of splitting after bin k */
     float best = INFINITY;
@@ -362,18 +356,18 @@ static int split(Builder *b, int first, int count, int depth, const Info *in, In
         Box4 acc = box4_empty();
         int n = 0, t = 0;
         for (int k = bn.bins - 1; k > 0; k--) {
-            box4_grow(&acc, bins.box[a][k].lo, bins.box[a][k].hi);
-            n += bins.n[a][k];
-            t += bins.nt[a][k];
+            box4_grow(&acc, bins->box[a][k].lo, bins->box[a][k].hi);
+            n += bins->n[a][k];
+            t += bins->nt[a][k];
             right_cost[k] = n ? box4_area(&acc) * leaf_cost(n, t) : -1.0f;
             right_box[k] = acc;
         }
         acc = box4_empty();
         n = t = 0;
         for (int k = 0; k < bn.bins - 1; k++) {
-            box4_grow(&acc, bins.box[a][k].lo, bins.box[a][k].hi);
-            n += bins.n[a][k];
-            t += bins.nt[a][k];
+            box4_grow(&acc, bins->box[a][k].lo, bins->box[a][k].hi);
+            n += bins->n[a][k];
+            t += bins->nt[a][k];
             if (n == 0 || right_cost[k + 1] < 0.0f)
                 continue;
             float c = box4_area(&acc) * leaf_cost(n, t) + right_cost[k + 1];
@@ -387,6 +381,7 @@ static int split(Builder *b, int first, int count, int depth, const Info *in, In
             }
         }
     }
+    free(part);
     if (best_axis < 0)
         return leaf_ok ? 0 : halve(b, first, count, left, right);
     float area = box4_area(&in->bounds);
