@@ -237,6 +237,24 @@ static void t_bvh_random(void)
     free(s.balls);
 }
 
+/* A scene large enough (more than 65,536 items) that the build bins and partitions its top
+ * ranges on every thread (bvh_build.c, PAR_BIN): the answers as brute force gives them. */
+static void t_bvh_large(void)
+{
+    RfTestRng r = {29};
+    enum { NT = 140000, NB = 2000, RAYS = 160 };
+    Scene s = {NT, NB, malloc(sizeof(RfTriangle) * NT), malloc(sizeof(int) * NT), malloc(sizeof(RfSphere) * NB), 0, 0, NULL, NULL};
+    random_tris_balls(&s, &r, 60, 0.05, 0.8);
+    RfRay *rays = malloc(sizeof *rays * RAYS);
+    for (int i = 0; i < RAYS; i++)
+        rays[i] = random_ray(&r, 70);
+    check_rays(&s, rays, RAYS, HUGE_VAL, "large");
+    free(rays);
+    free(s.tris);
+    free(s.sides);
+    free(s.balls);
+}
+
 /* A grid of squares split into triangles, vertices on a dyadic grid (exact), rays aimed exactly
  * at edges and vertices: both triangles of an edge are hit at the same t and the lower key wins,
  * with the BVH as with brute force; far from the origin as well (the float filter's bound). */
@@ -540,6 +558,7 @@ const RfTest rf_tests_bvh[] = {
     {"bvh_cones_vs_brute_force", t_bvh_cones},
     {"bvh_cone_empty_vs_brute_force", t_bvh_cone_empty},
     {"bvh_random_vs_brute_force", t_bvh_random},
+    {"bvh_large_parallel_build_vs_brute_force", t_bvh_large},
     {"bvh_shared_edges_vs_brute_force", t_bvh_shared_edges},
     {"bvh_degenerate", t_bvh_degenerate},
     {"bvh_ray_constants", t_bvh_ray_constants},
