@@ -659,7 +659,110 @@ static void test_obj_fast_path(void)
     free(want);
 }
 
+/* The faces go into the scene in chunks of 16,384 on the load's threads (obj.c, emit_faces):
+ * 40,000 faces (three chunks) of every kind the reader knows, loaded on 1, 2 and 3 threads,
+ * make the same scene, and one face after another as the file lists them; the first failing
+ * face in the file is the one reported, whichever thread met it first. */
+enum { TF_ROWS = 200, TF_COLS = 100, TF_FACES = 40000 };
+
+/* OBJ text: a TF_ROWS x TF_COLS grid of vertices (z a function of x and y), faces over it in
+ * turn: flat triangles, smooth triangles, quads with their own normals, triangles of no area
+ * (dropped); bad_a and bad_b (face numbers, or -1) use a zero-length normal. */
+static char *threads_obj(int bad_a, int bad_b, int *bad_line)
+{
+    size_t cap = (size_t)64 * (TF_ROWS * TF_COLS + TF_FACES + 16), len = 0;
+    char *t = malloc(cap);
+    int line = 1;
+    len += (size_t)snprintf(t + len, cap - len, "vn 0 0 1\nvn 0.6 0 0.8\nvn 0 0 0\n");
+    line += 3;
+    for (int r = 0; r < TF_ROWS; r++)
+        for (int c = 0; c < TF_COLS; c++, line++)
+            len += (size_t)snprintf(t + len, cap - len, "v %d %d %.17g\n", c, r, 0.01 * (c % 7) * (r % 5));
+    for (int f = 0; f < TF_FACES; f++) {
+        int cell = f % ((TF_ROWS - 1) * (TF_COLS - 1)), r = cell / (TF_COLS - 1), c = cell % (TF_COLS - 1);
+        int a = r * TF_COLS + c + 1, b = a + 1, d = a + TF_COLS, e = d + 1;
+        if (f % 4000 == 0) {
+            len += (size_t)snprintf(t + len, cap - len, "s %s\n", (f / 4000) % 2 ? "off" : "1");
+            line++;
+        }
+        if (f == bad_a || f == bad_b) {
+            if (f == bad_a)
+                *bad_line = line;
+            len += (size_t)snprintf(t + len, cap - len, "f %d//3 %d//1 %d//1\n", a, b, e);
+        } else if (f % 5 == 3) {
+            len += (size_t)snprintf(t + len, cap - len, "f %d//1 %d//2 %d//1 %d//2\n", a, b, e, d);
+        } else if (f % 11 == 7) {
+            len += (size_t)snprintf(t + len, cap - len, "f %d %d %d\n", a, b, a); /* no area */
+        } else {
+            len += (size_t)snprintf(t + len, cap - len, "f %d %d %d\n", a, b, e);
+        }
+        line++;
+    }
+    return t;
+}
+
+static void test_obj_threads(void)
+{
+    int bad_line = -1;
+    char *text = threads_obj(-1, -1, &bad_line);
+    RfScene sc[3];
+    char err[512];
+    for (int k = 0; k < 3; k++) {
+        RfLoadOptions opt = rf_load_options_default();
+        opt.threads = k + 1;
+        RF_CHECK_EQ_INT(rf_scene_read_obj("t.obj", text, strlen(text), &opt, &sc[k], err, sizeof err), RF_OK);
+    }
+    /* independently: every face but those of no area (f % 11 == 7 but not a quad) */
+    size_t want = 0;
+    for (int f = 0; f < TF_FACES; f++)
+        want += !(f % 5 != 3 && f % 11 == 7);
+    RF_CHECK(sc[0].prim_count == want);
+    int same = 1, in_order = 1;
+    for (int k = 1; k < 3; k++) {
+        same &= sc[k].prim_count == sc[0].prim_count && sc[k].vertex_count == sc[0].vertex_count &&
+                sc[k].normal_count == sc[0].normal_count && sc[k].material_count == sc[0].material_count;
+        if (!same)
+            break;
+        same &= memcmp(sc[k].vertices, sc[0].vertices, sizeof *sc[0].vertices * sc[0].vertex_count) == 0;
+        same &= memcmp(sc[k].normals, sc[0].normals, sizeof *sc[0].normals * sc[0].normal_count) == 0;
+        for (size_t p = 0; p < sc[0].prim_count; p++) {
+            const RfPrimitive *a = &sc[0].prims[p], *b = &sc[k].prims[p];
+            same &= a->type == b->type && a->flags == b->flags && a->material == b->material &&
+                    a->loc.line == b->loc.line && a->u.poly.first == b->u.poly.first &&
+                    a->u.poly.count == b->u.poly.count && a->u.poly.nfirst == b->u.poly.nfirst;
+        }
+    }
+    RF_CHECK(same);
+    size_t smooth = 0, quads = 0;
+    for (size_t p = 0; p < sc[0].prim_count; p++) {
+        const RfPrimitive *a = &sc[0].prims[p];
+        in_order &= p == 0 || a->loc.line > sc[0].prims[p - 1].loc.line;
+        in_order &= a->u.poly.first == (p ? sc[0].prims[p - 1].u.poly.first + (size_t)sc[0].prims[p - 1].u.poly.count : 0);
+        smooth += (a->flags & RF_PRIM_VERTEX_NORMALS) != 0;
+        quads += a->type == RF_PRIM_POLYGON;
+    }
+    RF_CHECK(in_order);
+    RF_CHECK(quads == TF_FACES / 5);
+    RF_CHECK(smooth > quads && smooth < sc[0].prim_count);
+    for (int k = 0; k < 3; k++)
+        rf_scene_free(&sc[k]);
+    free(text);
+    /* two bad faces, in the second and third chunk: the earlier one is reported */
+    text = threads_obj(20000, 36000, &bad_line);
+    char want_at[64];
+    snprintf(want_at, sizeof want_at, "t.obj:%d:1: ", bad_line);
+    for (int k = 0; k < 3; k++) {
+        RfLoadOptions opt = rf_load_options_default();
+        opt.threads = k + 1;
+        RfScene s;
+        RF_CHECK(rf_scene_read_obj("t.obj", text, strlen(text), &opt, &s, err, sizeof err) != RF_OK);
+        RF_CHECK(strncmp(err, want_at, strlen(want_at)) == 0 && strstr(err, "zero length"));
+    }
+    free(text);
+}
+
 const RfTest rf_tests_mesh[] = {
+    {"mesh_obj_threads_same_scene", test_obj_threads},
     {"mesh_obj_fast_path", test_obj_fast_path},
     {"mesh_obj_index_forms", test_obj_index_forms},
     {"mesh_obj_polygons", test_obj_polygons},

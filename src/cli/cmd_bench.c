@@ -758,6 +758,7 @@ int rf_cmd_bench(int argc, char **argv)
     }
     RfScene scene;
     RfLoadOptions lopt = rf_load_options_default();
+    lopt.threads = a.threads;
     rf_scene_init(&scene);
     if (rf_scene_load(a.scene, &lopt, &scene, err, sizeof err) != RF_OK) {
         rf_arg_report("refray bench", err);

@@ -38,7 +38,7 @@ RfStatus rf_scene_load(const char *path, const RfLoadOptions *opt, RfScene *scen
         st = rf_scene_read_obj(path, text, len, opt, scene, err, errsz);
     else
         st = nff ? rf_scene_read_nff(path, text, len, opt, scene, err, errsz)
-                 : rf_scene_read_rf(path, text, len, scene, err, errsz);
+                 : rf__scene_read_rf(path, text, len, opt, scene, err, errsz);
     if (st == RF_OK) /* after the files it included, which the readers hashed as they read them */
         scene->source_hash = rf_hash_bytes(scene->source_hash, text, len);
     if (st == RF_OK && (st = rf__reader_add_file(scene, path, err, errsz)))

@@ -16,6 +16,7 @@
  * a count) of the faces of that group around the vertex whose normals lie within the crease
  * angle of this face's normal. A face with `s off` gets no vertex normals (flat). Files
  * without `s` are smoothed (group 1): the crease angle keeps their hard edges. */
+#include <limits.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -25,6 +26,7 @@
 #include "reader.h"
 #include "refray/hash.h"
 #include "refray/numeric.h"
+#include "refray/parallel.h"
 #include "refray/scene_io.h"
 
 #define RF_OBJ_PATH_MAX 4096
@@ -528,76 +530,198 @@ static RfVec3 corner_normal(const ObjReader *r, const Smoothing *sm, size_t fi, 
     return len > 0.0 ? rf_vec3_scale(sum, 1.0 / len) : sm->unit[fi];
 }
 
-static RfStatus emit_faces(ObjReader *r)
+/* ---- the faces into the scene, in chunks on every thread ----------------------------------
+ * Two passes over chunks of faces: the first finds the faces with an area and counts their
+ * corners, so that every face's vertices, normals and primitive get their place in the scene
+ * (the order of the file, as one face after another would append them); the second writes them
+ * there and checks each primitive. Any number of threads gives the same scene. */
+enum { EMIT_CHUNK = 16384 }; /* faces per chunk */
+
+typedef struct {
+    size_t faces, verts, norms;    /* the chunk's faces with an area, their corners and normals */
+    size_t pfirst, vfirst, nfirst; /* where they go in the scene */
+    size_t bad;                    /* the chunk's first face that failed (SIZE_MAX: none) */
+    RfStatus st;
+    char msg[256];
+} EmitChunk;
+
+typedef struct {
+    ObjReader *r;
+    const Smoothing *sm;
+    unsigned char *keep; /* per face: it has an area */
+    EmitChunk *chunks;
+    int most;            /* corners of the largest face */
+    int def;             /* the default material, for faces before any usemtl */
+} EmitJob;
+
+static int face_normals(const Face *f) { return f->has_vn || f->group != 0; }
+
+static void emit_fail(EmitChunk *c, size_t face, RfStatus st, const char *msg)
 {
-    Smoothing sm;
-    RfVec3 *v = NULL, *n = NULL;
-    size_t cap = 0;
-    int smooth = 0; /* some face gets its normals from its neighbours */
-    for (size_t i = 0; i < r->nfaces && !smooth; i++)
-        smooth = !r->faces[i].has_vn && r->faces[i].group != 0;
-    memset(&sm, 0, sizeof sm);
-    RfStatus st = smooth ? smoothing_init(r, &sm) : RF_OK;
-    if (st) {
-        smoothing_free(&sm);
-        return oom(r);
+    c->bad = face;
+    c->st = st;
+    snprintf(c->msg, sizeof c->msg, "%s", msg);
+}
+
+/* Pass one: which faces have an area (the model's degeneracy test), and the counts. */
+static int emit_count(void *ctx, int ci, int thread)
+{
+    EmitJob *j = ctx;
+    const ObjReader *r = j->r;
+    EmitChunk *c = &j->chunks[ci];
+    size_t lo = (size_t)ci * EMIT_CHUNK, hi = lo + EMIT_CHUNK < r->nfaces ? lo + EMIT_CHUNK : r->nfaces;
+    RfVec3 *v = malloc(sizeof *v * (size_t)j->most);
+    (void)thread;
+    if (!v) {
+        emit_fail(c, lo, RF_ERR_NOMEM, "out of memory");
+        return 0;
     }
-    for (size_t i = 0; !st && i < r->nfaces; i++) {
+    for (size_t i = lo; i < hi; i++) {
         const Face *f = &r->faces[i];
         double ext2;
-        if ((size_t)f->n > cap) {
-            free(v);
-            free(n);
-            cap = (size_t)f->n;
-            v = malloc(cap * sizeof *v);
-            n = malloc(cap * sizeof *n);
-            if (!v || !n) {
-                st = oom(r);
-                break;
-            }
-        }
         RfVec3 a = face_area(r, f, v, &ext2);
-        if (!(rf_vec3_length(a) > RF_SCENE_DEGENERATE_REL * ext2))
-            continue; /* zero area: nothing to see, and no normal to give */
-        int normals = f->has_vn || f->group != 0;
-        for (int k = 0; k < f->n; k++) {
-            const Corner *c = &r->corners[f->first + (size_t)k];
-            if (f->has_vn)
-                n[k] = r->nrm[c->vn];
-            else if (normals)
-                n[k] = corner_normal(r, &sm, i, k);
+        j->keep[i] = rf_vec3_length(a) > RF_SCENE_DEGENERATE_REL * ext2; /* else: nothing to see */
+        if (j->keep[i]) {
+            c->faces++;
+            c->verts += (size_t)f->n;
+            c->norms += face_normals(f) ? (size_t)f->n : 0;
         }
+    }
+    free(v);
+    return 0;
+}
+
+/* Pass two: the faces' vertices, normals and primitives into their places. */
+static int emit_write(void *ctx, int ci, int thread)
+{
+    EmitJob *j = ctx;
+    const ObjReader *r = j->r;
+    RfScene *scene = r->scene;
+    EmitChunk *c = &j->chunks[ci];
+    size_t lo = (size_t)ci * EMIT_CHUNK, hi = lo + EMIT_CHUNK < r->nfaces ? lo + EMIT_CHUNK : r->nfaces;
+    size_t pi = c->pfirst, vi = c->vfirst, ni = c->nfirst;
+    (void)thread;
+    if (c->bad != SIZE_MAX)
+        return 0;
+    for (size_t i = lo; i < hi; i++) {
+        const Face *f = &r->faces[i];
+        if (!j->keep[i])
+            continue;
+        int normals = face_normals(f);
         RfPrimitive p;
         memset(&p, 0, sizeof p);
         p.type = f->n == 3 ? RF_PRIM_TRIANGLE : RF_PRIM_POLYGON;
         p.flags = RF_PRIM_TWO_SIDED | r->pl->prim_flags | (normals ? RF_PRIM_VERTEX_NORMALS : 0u);
         p.loc = f->loc;
         p.u.poly.count = f->n;
-        p.material = f->material >= 0 ? f->material : r->pl->material;
-        if (p.material < 0) {
-            RfToken kw;
-            memset(&kw, 0, sizeof kw);
-            kw.line = f->loc.line;
-            kw.col = f->loc.col;
-            int def = -1;
-            for (size_t m = 0; m < r->scene->material_count && def < 0; m++)
-                if (strcmp(r->scene->materials[m].name, "default") == 0)
-                    def = (int)m;
-            if ((st = rf__reader_default_material(&r->lx, r->scene, &kw, &def)))
-                break;
-            p.material = def;
+        p.u.poly.first = vi;
+        p.u.poly.nfirst = ni;
+        p.material = f->material >= 0 ? f->material : j->def;
+        for (int k = 0; k < f->n; k++) {
+            const Corner *cn = &r->corners[f->first + (size_t)k];
+            scene->vertices[vi++] = r->pos[cn->v];
+            if (normals) /* normalised as rf_scene_add_vertices does */
+                scene->normals[ni++] = rf_vec3_normalize(f->has_vn ? r->nrm[cn->vn] : corner_normal(r, j->sm, i, k));
         }
-        if (rf_scene_add_vertices(r->scene, v, normals ? n : NULL, f->n, &p.u.poly.first,
-                                  &p.u.poly.nfirst)) {
-            st = oom(r);
-            break;
+        char msg[256];
+        RfStatus st = rf__scene_put_primitive(scene, pi++, &p, msg, sizeof msg);
+        if (st) {
+            emit_fail(c, i, st, msg);
+            return 0;
         }
-        st = rf__reader_add_prim(&r->lx, r->scene, &p);
     }
-    free(v);
-    free(n);
+    return 0;
+}
+
+static RfStatus emit_faces(ObjReader *r)
+{
+    RfScene *scene = r->scene;
+    Smoothing sm;
+    EmitJob j;
+    int smooth = 0; /* some face gets its normals from its neighbours */
+    for (size_t i = 0; i < r->nfaces && !smooth; i++)
+        smooth = !r->faces[i].has_vn && r->faces[i].group != 0;
+    memset(&sm, 0, sizeof sm);
+    memset(&j, 0, sizeof j);
+    size_t nchunks = (r->nfaces + EMIT_CHUNK - 1) / EMIT_CHUNK;
+    if (nchunks > INT_MAX)
+        return oom(r);
+    j.r = r;
+    j.sm = &sm;
+    j.def = -1;
+    j.most = 3;
+    for (size_t i = 0; i < r->nfaces; i++)
+        j.most = r->faces[i].n > j.most ? r->faces[i].n : j.most;
+    j.keep = malloc(r->nfaces + 1);
+    j.chunks = calloc(nchunks + 1, sizeof *j.chunks);
+    RfStatus st = !j.keep || !j.chunks ? RF_ERR_NOMEM : smooth ? smoothing_init(r, &sm) : RF_OK;
+    for (size_t c = 0; c < nchunks; c++)
+        j.chunks[c].bad = SIZE_MAX;
+    int threads = r->pl->threads > 0 ? r->pl->threads : rf_cpu_count();
+    if (!st && rf_parallel_for((int)nchunks, threads, emit_count, NULL, &j) != RF_OK)
+        st = RF_ERR_NOMEM;
+    size_t faces = 0, verts = 0, norms = 0, first_bad = SIZE_MAX, bad_chunk = 0;
+    for (size_t c = 0; !st && c < nchunks; c++) {
+        EmitChunk *ch = &j.chunks[c];
+        if (ch->bad != SIZE_MAX && first_bad == SIZE_MAX) {
+            first_bad = ch->bad;
+            bad_chunk = c;
+        }
+        ch->pfirst = scene->prim_count + faces;
+        ch->vfirst = scene->vertex_count + verts;
+        ch->nfirst = scene->normal_count + norms;
+        faces += ch->faces;
+        verts += ch->verts;
+        norms += ch->norms;
+    }
+    if (!st && first_bad != SIZE_MAX)
+        st = j.chunks[bad_chunk].st;
+    if (!st)
+        st = rf__scene_reserve(scene, faces, verts, norms);
+    /* the default material, where the first face that needs it stands (the one material made here) */
+    for (size_t i = 0; !st && i < r->nfaces && j.def < 0; i++) {
+        const Face *f = &r->faces[i];
+        if (!j.keep[i] || f->material >= 0 || r->pl->material >= 0)
+            continue;
+        RfToken kw;
+        memset(&kw, 0, sizeof kw);
+        kw.line = f->loc.line;
+        kw.col = f->loc.col;
+        for (size_t m = 0; m < scene->material_count && j.def < 0; m++)
+            if (strcmp(scene->materials[m].name, "default") == 0)
+                j.def = (int)m;
+        if ((st = rf__reader_default_material(&r->lx, scene, &kw, &j.def)) != RF_OK) {
+            smoothing_free(&sm);
+            free(j.keep);
+            free(j.chunks);
+            return st; /* reported */
+        }
+    }
+    if (r->pl->material >= 0)
+        j.def = r->pl->material;
+    size_t prims0 = scene->prim_count, verts0 = scene->vertex_count, norms0 = scene->normal_count;
+    if (!st) {
+        scene->prim_count += faces; /* counted in: each face's check sees its own range */
+        scene->vertex_count += verts;
+        scene->normal_count += norms;
+        if (rf_parallel_for((int)nchunks, threads, emit_write, NULL, &j) != RF_OK)
+            st = RF_ERR_NOMEM;
+        for (size_t c = 0; !st && c < nchunks; c++)
+            if (j.chunks[c].bad != SIZE_MAX) {
+                const Face *f = &r->faces[j.chunks[c].bad];
+                st = rf_lex_error(&r->lx, f->loc.line, f->loc.col, "%s", j.chunks[c].msg);
+                break;
+            }
+        if (st) { /* the scene is freed by the caller: its counts only need to stay honest */
+            scene->prim_count = prims0;
+            scene->vertex_count = verts0;
+            scene->normal_count = norms0;
+        }
+    }
     smoothing_free(&sm);
-    return st;
+    free(j.keep);
+    free(j.chunks);
+    return st == RF_ERR_NOMEM ? oom(r) : st;
 }
 
 RfStatus rf__obj_read(const char *name, const char *text, size_t len, const RfObjPlacement *pl,
@@ -692,6 +816,7 @@ RfStatus rf_scene_read_obj(const char *name, const char *text, size_t len,
     pl.crease_deg = opt->crease_angle;
     pl.material = -1;
     pl.prim_flags = 0;
+    pl.threads = opt->threads;
     rf_scene_init(scene);
     scene->format = RF_FORMAT_OBJ;
     RfStatus st = rf__obj_read(name, text, len, &pl, scene, err, errsz);

@@ -16,6 +16,7 @@ RfLoadOptions rf_load_options_default(void)
     RfLoadOptions o;
     o.nff_fov = RF_FOV_PIXEL_CENTRES;
     o.crease_angle = 60.0;
+    o.threads = 0;
     return o;
 }
 

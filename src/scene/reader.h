@@ -5,6 +5,7 @@
 #define RF_SCENE_READER_H
 
 #include "lexer.h"
+#include "refray/scene_io.h"
 #include "scene_internal.h"
 
 /* Where a token stands, as the scene model records it (RfSrcLoc). */
@@ -50,7 +51,11 @@ typedef struct {
     double crease_deg;   /* edges sharper than this keep separate normals per corner (§3.6.3) */
     int material;        /* material of faces before any usemtl; -1: a white "default" one */
     unsigned prim_flags; /* added to every face (RF_PRIM_IN_OBJECT inside an object) */
+    int threads;         /* the faces into the scene on this many threads (0: every processor) */
 } RfObjPlacement;
+/* rf_scene_read_rf with load options (their thread count reaches its `mesh` statements). */
+RfStatus rf__scene_read_rf(const char *name, const char *text, size_t len, const RfLoadOptions *opt,
+                           RfScene *scene, char *err, size_t errsz);
 /* Appends the faces of OBJ text (materials of its mtllib files too). */
 RfStatus rf__obj_read(const char *name, const char *text, size_t len, const RfObjPlacement *pl,
                       RfScene *scene, char *err, size_t errsz);

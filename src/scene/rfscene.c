@@ -35,6 +35,7 @@ typedef struct {
     size_t vcap;
     PendingRef *refs;
     size_t ref_count, ref_cap;
+    int threads; /* RfLoadOptions.threads, for `mesh` */
 } RfReader;
 
 /* A colour: one number (grey) or three, each >= 0. */
@@ -698,6 +699,7 @@ static RfStatus read_mesh(RfReader *r, const RfToken *kw)
     pl.crease_deg = 60.0;
     pl.material = r->material;
     pl.prim_flags = r->object >= 0 ? RF_PRIM_IN_OBJECT : 0u;
+    pl.threads = r->threads;
     if (rf_lex_at_statement_start(lx))
         return rf_lex_error(lx, lx->last_end_line, lx->last_end_col, "mesh needs an OBJ file name");
     file = lx->tok; /* any token: "./a.obj" reads as a number */
@@ -865,10 +867,17 @@ static RfStatus read_statement(RfReader *r, const RfToken *kw)
 RfStatus rf_scene_read_rf(const char *name, const char *text, size_t len, RfScene *scene,
                           char *err, size_t errsz)
 {
+    return rf__scene_read_rf(name, text, len, NULL, scene, err, errsz);
+}
+
+RfStatus rf__scene_read_rf(const char *name, const char *text, size_t len, const RfLoadOptions *opt,
+                           RfScene *scene, char *err, size_t errsz)
+{
     RfReader r;
     RfStatus st = RF_OK;
     char q[96];
     memset(&r, 0, sizeof r);
+    r.threads = opt ? opt->threads : 0;
     r.scene = scene;
     r.material = -1;
     r.object = -1;

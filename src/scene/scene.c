@@ -374,15 +374,9 @@ static int polygon_is_convex(const RfVec3 *v, int n)
     return 1;
 }
 
-RfStatus rf_scene_add_primitive(RfScene *scene, const RfPrimitive *p, char *msg, size_t msgsz)
+/* A checked primitive into its slot q: planes normalised, polygons marked non-convex. */
+static void store_primitive(const RfScene *scene, RfPrimitive *q, const RfPrimitive *p)
 {
-    RfStatus st = rf_scene_check_primitive(scene, p, msg, msgsz);
-    if (st)
-        return st;
-    st = reserve((void **)&scene->prims, &scene->prim_cap, scene->prim_count, 1, sizeof *p);
-    if (st)
-        return rf__msgf(msg, msgsz, st, "out of memory");
-    RfPrimitive *q = &scene->prims[scene->prim_count++];
     *q = *p;
     q->flags &= ~(unsigned)RF_PRIM_NONCONVEX;
     if (q->type == RF_PRIM_PLANE) {
@@ -393,7 +387,38 @@ RfStatus rf_scene_add_primitive(RfScene *scene, const RfPrimitive *p, char *msg,
     if (q->type == RF_PRIM_POLYGON &&
         !polygon_is_convex(scene->vertices + q->u.poly.first, q->u.poly.count))
         q->flags |= RF_PRIM_NONCONVEX;
+}
+
+RfStatus rf_scene_add_primitive(RfScene *scene, const RfPrimitive *p, char *msg, size_t msgsz)
+{
+    RfStatus st = rf_scene_check_primitive(scene, p, msg, msgsz);
+    if (st)
+        return st;
+    st = reserve((void **)&scene->prims, &scene->prim_cap, scene->prim_count, 1, sizeof *p);
+    if (st)
+        return rf__msgf(msg, msgsz, st, "out of memory");
+    store_primitive(scene, &scene->prims[scene->prim_count++], p);
     return RF_OK;
+}
+
+RfStatus rf__scene_put_primitive(RfScene *scene, size_t index, const RfPrimitive *p, char *msg, size_t msgsz)
+{
+    RfStatus st = rf_scene_check_primitive(scene, p, msg, msgsz);
+    if (!st)
+        store_primitive(scene, &scene->prims[index], p);
+    return st;
+}
+
+RfStatus rf__scene_reserve(RfScene *scene, size_t prims, size_t vertices, size_t normals)
+{
+    RfStatus st = reserve((void **)&scene->prims, &scene->prim_cap, scene->prim_count, prims, sizeof *scene->prims);
+    if (!st)
+        st = reserve((void **)&scene->vertices, &scene->vertex_cap, scene->vertex_count, vertices,
+                      sizeof *scene->vertices);
+    if (!st)
+        st = reserve((void **)&scene->normals, &scene->normal_cap, scene->normal_count, normals,
+                      sizeof *scene->normals);
+    return st;
 }
 
 RfStatus rf_scene_camera_check(const RfSceneCamera *cam, RfSrcLoc *loc, char *msg, size_t msgsz)

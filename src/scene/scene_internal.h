@@ -27,4 +27,11 @@ static inline int rf__nonneg_rgb(RfRgb c)
  * degeneracy test measures (scene.c). */
 RfVec3 rf__polygon_area_vector(const RfVec3 *v, int n, double *ext2);
 
+/* For readers that add many primitives at once, on several threads: room for this many more
+ * primitives, vertices and normals (rf__scene_reserve; the counts stay), and a primitive checked
+ * and stored into prims[index] as rf_scene_add_primitive would append it (rf__scene_put_primitive;
+ * the caller has counted it in). */
+RfStatus rf__scene_reserve(RfScene *scene, size_t prims, size_t vertices, size_t normals);
+RfStatus rf__scene_put_primitive(RfScene *scene, size_t index, const RfPrimitive *p, char *msg, size_t msgsz);
+
 #endif
