@@ -22,6 +22,7 @@
 #define COST_NODE 1.5f   /* SAH cost of a node visit, in triangle blocks */
 #define COST_OTHER 2.0f  /* SAH cost of an item tested by the caller, in triangle blocks */
 #define PAR_BIN 65536    /* ranges at least this long are binned on every thread */
+#define SHORT_RANGE 64   /* shorter ranges are binned into one set of bins (bin_range) */
 #define TASK_MIN 4096    /* the top levels are split until subtrees are this small ... */
 #define TASKS_PER_THREAD 8 /* ... or there are about this many per thread */
 
@@ -119,12 +120,13 @@ static inline void bin_of(const Binner *bn, const Ref *r, int k[4])
 #endif
 }
 
-/* Two sets of bins, items alternating between them: consecutive items often fall into the same
- * bin, and one set would make each update wait for the previous one. */
-static void bin_range(const Ref *refs, const int32_t *ids, int first, int end, const Binner *bn, Bins *b)
+/* Two sets of bins (sets = 2), items alternating between them: consecutive items often fall
+ * into the same bin, and one set would make each update wait for the previous one. A short
+ * range takes one set (sets = 1): there the second set's clearing and merging cost more. */
+static void bin_range(const Ref *refs, const int32_t *ids, int first, int end, const Binner *bn, int sets, Bins *b)
 {
-    Bins *two = b + 1;
-    for (int s = 0; s < 2; s++)
+    Bins *two = b + sets - 1;
+    for (int s = 0; s < sets; s++)
         for (int a = 0; a < 3; a++)
             for (int k = 0; k < bn->bins; k++) {
                 b[s].box[a][k] = box4_empty();
@@ -217,7 +219,7 @@ static int bin_chunk(void *ctx, int i, int thread)
     int lo = j->first + (int)((long long)j->count * i / j->chunks);
     int hi = j->first + (int)((long long)j->count * (i + 1) / j->chunks);
     (void)thread;
-    bin_range(j->b->refs, j->b->ids, lo, hi, j->bn, &j->bins[2 * i]);
+    bin_range(j->b->refs, j->b->ids, lo, hi, j->bn, 2, &j->bins[2 * i]);
     return 0;
 }
 
@@ -340,8 +342,10 @@ static int split(Builder *b, int first, int count, int depth, const Info *in, In
         }
     }
     if (bins == bins2) {
-        bin_range(b->refs, b->ids, first, first + count, &bn, bins2);
-        bins_merge(bins, &bins2[1], bn.bins);
+        int sets = count >= SHORT_RANGE ? 2 : 1;
+        bin_range(b->refs, b->ids, first, first + count, &bn, sets, bins2);
+        if (sets == 2)
+            bins_merge(bins, &bins2[1], bn.bins);
     }
     /* sweep each axis: the cost of splitting after bin k */
     float best = INFINITY;
