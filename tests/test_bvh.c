@@ -214,12 +214,27 @@ static void random_tris_balls(Scene *s, RfTestRng *r, double extent, double rmin
     }
 }
 
+/* A scene of nt random triangles and nb random spheres (random_tris_balls); scene_free frees it. */
+static Scene random_scene(RfTestRng *r, int nt, int nb, double extent, double rmin, double rmax)
+{
+    Scene s = {nt, nb, malloc(sizeof(RfTriangle) * (size_t)nt), malloc(sizeof(int) * (size_t)nt),
+               malloc(sizeof(RfSphere) * (size_t)nb), 0, 0, NULL, NULL};
+    random_tris_balls(&s, r, extent, rmin, rmax);
+    return s;
+}
+
+static void scene_free(Scene *s)
+{
+    free(s->tris);
+    free(s->sides);
+    free(s->balls);
+}
+
 static void t_bvh_random(void)
 {
     RfTestRng r = {11};
     enum { NT = 3000, NB = 800, RAYS = 6000 };
-    Scene s = {NT, NB, malloc(sizeof(RfTriangle) * NT), malloc(sizeof(int) * NT), malloc(sizeof(RfSphere) * NB), 0, 0, NULL, NULL};
-    random_tris_balls(&s, &r, 10, 0.01, 0.5);
+    Scene s = random_scene(&r, NT, NB, 10, 0.01, 0.5);
     RfRay *rays = malloc(sizeof *rays * RAYS);
     for (int i = 0; i < RAYS; i++) {
         rays[i] = random_ray(&r, 12);
@@ -232,9 +247,7 @@ static void t_bvh_random(void)
      * spheres go through the callback) */
     RF_CHECK(s.tests < 2L * 2 * 3 * RAYS * (NB / 2) / 10);
     free(rays);
-    free(s.tris);
-    free(s.sides);
-    free(s.balls);
+    scene_free(&s);
 }
 
 /* A scene large enough (more than 65,536 items) that the build bins and partitions its top
@@ -243,16 +256,13 @@ static void t_bvh_large(void)
 {
     RfTestRng r = {29};
     enum { NT = 140000, NB = 2000, RAYS = 160 };
-    Scene s = {NT, NB, malloc(sizeof(RfTriangle) * NT), malloc(sizeof(int) * NT), malloc(sizeof(RfSphere) * NB), 0, 0, NULL, NULL};
-    random_tris_balls(&s, &r, 60, 0.05, 0.8);
+    Scene s = random_scene(&r, NT, NB, 60, 0.05, 0.8);
     RfRay *rays = malloc(sizeof *rays * RAYS);
     for (int i = 0; i < RAYS; i++)
         rays[i] = random_ray(&r, 70);
     check_rays(&s, rays, RAYS, HUGE_VAL, "large");
     free(rays);
-    free(s.tris);
-    free(s.sides);
-    free(s.balls);
+    scene_free(&s);
 }
 
 /* A grid of squares split into triangles, vertices on a dyadic grid (exact), rays aimed exactly
