@@ -540,8 +540,8 @@ enum { EMIT_CHUNK = 16384 }; /* faces per chunk */
 typedef struct {
     size_t faces, verts, norms;    /* the chunk's faces with an area, their corners and normals */
     size_t pfirst, vfirst, nfirst; /* where they go in the scene */
-    size_t bad;                    /* the chunk's first face that failed (SIZE_MAX: none) */
-    RfStatus st;
+    RfStatus st;                   /* RF_OK, or why the chunk stopped (at face bad, saying msg) */
+    size_t bad;
     char msg[256];
 } EmitChunk;
 
@@ -551,16 +551,16 @@ typedef struct {
     unsigned char *keep; /* per face: it has an area */
     EmitChunk *chunks;
     int most;            /* corners of the largest face */
-    int def;             /* the default material, for faces before any usemtl */
+    int def;             /* the material of faces before any usemtl */
 } EmitJob;
 
 static int face_normals(const Face *f) { return f->has_vn || f->group != 0; }
 
-static void emit_fail(EmitChunk *c, size_t face, RfStatus st, const char *msg)
+/* The faces of chunk ci: [*lo, *hi). */
+static void chunk_faces(const ObjReader *r, int ci, size_t *lo, size_t *hi)
 {
-    c->bad = face;
-    c->st = st;
-    snprintf(c->msg, sizeof c->msg, "%s", msg);
+    *lo = (size_t)ci * EMIT_CHUNK;
+    *hi = *lo + EMIT_CHUNK < r->nfaces ? *lo + EMIT_CHUNK : r->nfaces;
 }
 
 /* Pass one: which faces have an area (the model's degeneracy test), and the counts. */
@@ -569,13 +569,14 @@ static int emit_count(void *ctx, int ci, int thread)
     EmitJob *j = ctx;
     const ObjReader *r = j->r;
     EmitChunk *c = &j->chunks[ci];
-    size_t lo = (size_t)ci * EMIT_CHUNK, hi = lo + EMIT_CHUNK < r->nfaces ? lo + EMIT_CHUNK : r->nfaces;
+    size_t lo, hi;
     RfVec3 *v = malloc(sizeof *v * (size_t)j->most);
     (void)thread;
     if (!v) {
-        emit_fail(c, lo, RF_ERR_NOMEM, "out of memory");
+        c->st = RF_ERR_NOMEM;
         return 0;
     }
+    chunk_faces(r, ci, &lo, &hi);
     for (size_t i = lo; i < hi; i++) {
         const Face *f = &r->faces[i];
         double ext2;
@@ -598,11 +599,9 @@ static int emit_write(void *ctx, int ci, int thread)
     const ObjReader *r = j->r;
     RfScene *scene = r->scene;
     EmitChunk *c = &j->chunks[ci];
-    size_t lo = (size_t)ci * EMIT_CHUNK, hi = lo + EMIT_CHUNK < r->nfaces ? lo + EMIT_CHUNK : r->nfaces;
-    size_t pi = c->pfirst, vi = c->vfirst, ni = c->nfirst;
+    size_t lo, hi, pi = c->pfirst, vi = c->vfirst, ni = c->nfirst;
     (void)thread;
-    if (c->bad != SIZE_MAX)
-        return 0;
+    chunk_faces(r, ci, &lo, &hi);
     for (size_t i = lo; i < hi; i++) {
         const Face *f = &r->faces[i];
         if (!j->keep[i])
@@ -623,14 +622,34 @@ static int emit_write(void *ctx, int ci, int thread)
             if (normals) /* normalised as rf_scene_add_vertices does */
                 scene->normals[ni++] = rf_vec3_normalize(f->has_vn ? r->nrm[cn->vn] : corner_normal(r, j->sm, i, k));
         }
-        char msg[256];
-        RfStatus st = rf__scene_put_primitive(scene, pi++, &p, msg, sizeof msg);
-        if (st) {
-            emit_fail(c, i, st, msg);
+        if ((c->st = rf__scene_put_primitive(scene, pi++, &p, c->msg, sizeof c->msg)) != RF_OK) {
+            c->bad = i;
             return 0;
         }
     }
     return 0;
+}
+
+/* The material of faces before any usemtl: the placement's, else one named "default", found or
+ * made where the first face with an area that needs it stands (as appending face by face made
+ * it). */
+static RfStatus default_material(ObjReader *r, const unsigned char *keep, int *def)
+{
+    *def = r->pl->material;
+    for (size_t i = 0; *def < 0 && i < r->nfaces; i++) {
+        const Face *f = &r->faces[i];
+        if (!keep[i] || f->material >= 0)
+            continue;
+        RfToken kw;
+        memset(&kw, 0, sizeof kw);
+        kw.line = f->loc.line;
+        kw.col = f->loc.col;
+        for (size_t m = 0; m < r->scene->material_count && *def < 0; m++)
+            if (strcmp(r->scene->materials[m].name, "default") == 0)
+                *def = (int)m;
+        return rf__reader_default_material(&r->lx, r->scene, &kw, def);
+    }
+    return RF_OK;
 }
 
 static RfStatus emit_faces(ObjReader *r)
@@ -648,25 +667,19 @@ static RfStatus emit_faces(ObjReader *r)
         return oom(r);
     j.r = r;
     j.sm = &sm;
-    j.def = -1;
     j.most = 3;
     for (size_t i = 0; i < r->nfaces; i++)
         j.most = r->faces[i].n > j.most ? r->faces[i].n : j.most;
     j.keep = malloc(r->nfaces + 1);
     j.chunks = calloc(nchunks + 1, sizeof *j.chunks);
     RfStatus st = !j.keep || !j.chunks ? RF_ERR_NOMEM : smooth ? smoothing_init(r, &sm) : RF_OK;
-    for (size_t c = 0; c < nchunks; c++)
-        j.chunks[c].bad = SIZE_MAX;
     int threads = r->pl->threads > 0 ? r->pl->threads : rf_cpu_count();
     if (!st && rf_parallel_for((int)nchunks, threads, emit_count, NULL, &j) != RF_OK)
         st = RF_ERR_NOMEM;
-    size_t faces = 0, verts = 0, norms = 0, first_bad = SIZE_MAX, bad_chunk = 0;
+    size_t faces = 0, verts = 0, norms = 0;
     for (size_t c = 0; !st && c < nchunks; c++) {
         EmitChunk *ch = &j.chunks[c];
-        if (ch->bad != SIZE_MAX && first_bad == SIZE_MAX) {
-            first_bad = ch->bad;
-            bad_chunk = c;
-        }
+        st = ch->st; /* out of memory */
         ch->pfirst = scene->prim_count + faces;
         ch->vfirst = scene->vertex_count + verts;
         ch->nfirst = scene->normal_count + norms;
@@ -674,44 +687,21 @@ static RfStatus emit_faces(ObjReader *r)
         verts += ch->verts;
         norms += ch->norms;
     }
-    if (!st && first_bad != SIZE_MAX)
-        st = j.chunks[bad_chunk].st;
     if (!st)
         st = rf__scene_reserve(scene, faces, verts, norms);
-    /* the default material, where the first face that needs it stands (the one material made here) */
-    for (size_t i = 0; !st && i < r->nfaces && j.def < 0; i++) {
-        const Face *f = &r->faces[i];
-        if (!j.keep[i] || f->material >= 0 || r->pl->material >= 0)
-            continue;
-        RfToken kw;
-        memset(&kw, 0, sizeof kw);
-        kw.line = f->loc.line;
-        kw.col = f->loc.col;
-        for (size_t m = 0; m < scene->material_count && j.def < 0; m++)
-            if (strcmp(scene->materials[m].name, "default") == 0)
-                j.def = (int)m;
-        if ((st = rf__reader_default_material(&r->lx, scene, &kw, &j.def)) != RF_OK) {
-            smoothing_free(&sm);
-            free(j.keep);
-            free(j.chunks);
-            return st; /* reported */
-        }
-    }
-    if (r->pl->material >= 0)
-        j.def = r->pl->material;
-    size_t prims0 = scene->prim_count, verts0 = scene->vertex_count, norms0 = scene->normal_count;
+    if (!st)
+        st = default_material(r, j.keep, &j.def);
     if (!st) {
+        size_t prims0 = scene->prim_count, verts0 = scene->vertex_count, norms0 = scene->normal_count;
         scene->prim_count += faces; /* counted in: each face's check sees its own range */
         scene->vertex_count += verts;
         scene->normal_count += norms;
         if (rf_parallel_for((int)nchunks, threads, emit_write, NULL, &j) != RF_OK)
             st = RF_ERR_NOMEM;
-        for (size_t c = 0; !st && c < nchunks; c++)
-            if (j.chunks[c].bad != SIZE_MAX) {
-                const Face *f = &r->faces[j.chunks[c].bad];
-                st = rf_lex_error(&r->lx, f->loc.line, f->loc.col, "%s", j.chunks[c].msg);
-                break;
-            }
+        for (size_t c = 0; !st && c < nchunks; c++) /* the file's first failing face */
+            if (j.chunks[c].st)
+                st = rf_lex_error(&r->lx, r->faces[j.chunks[c].bad].loc.line, r->faces[j.chunks[c].bad].loc.col,
+                                  "%s", j.chunks[c].msg);
         if (st) { /* the scene is freed by the caller: its counts only need to stay honest */
             scene->prim_count = prims0;
             scene->vertex_count = verts0;
