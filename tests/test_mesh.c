@@ -11,6 +11,8 @@
 #include "refray/scene_io.h"
 #include "refray/transform.h"
 #include "rf_test.h"
+#include "../fuzz/fuzz_common.h" /* rf_fuzz_same_scene */
+#include "../src/scene/reader.h"
 
 static RfStatus read_obj(const char *text, RfScene *s, char *err, size_t errsz)
 {
@@ -659,6 +661,57 @@ static void test_obj_fast_path(void)
     free(want);
 }
 
+/* The fast path's vn and vt lines against the statement readers (the same lines indented) and
+ * against strtod: normals of 1 to 17 significant digits (beyond 15 the fast path leaves them to
+ * the statement readers) and texture coordinates of one to three numbers; each face takes one
+ * normal, which the scene keeps normalised. */
+static void test_obj_fast_normals(void)
+{
+    RfTestRng r = {77};
+    enum { NN = 600 };
+    size_t cap = (size_t)NN * 200 + 256;
+    char *text[2] = {malloc(cap), malloc(cap)};
+    RfVec3 *want = malloc(sizeof *want * NN);
+    size_t len[2] = {0, 0};
+    for (int k = 0; k < 2; k++)
+        len[k] += (size_t)snprintf(text[k] + len[k], cap - len[k], "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    for (int i = 0; i < NN; i++) {
+        double c[3];
+        char line[200];
+        int digits = 1 + i % 17;
+        for (int a = 0; a < 3; a++) {
+            char num[64];
+            snprintf(num, sizeof num, "%.*g", digits, rf_test_uniform(&r, -10.0, 10.0) + (a == 2 ? 20.0 : 0.0));
+            c[a] = strtod(num, NULL);
+            snprintf(line + (a ? strlen(line) : 0), sizeof line - (a ? strlen(line) : 0), "%s%s", a ? " " : "vn ", num);
+        }
+        want[i] = rf_vec3_normalize(rf_vec3(c[0], c[1], c[2]));
+        for (int k = 0; k < 2; k++)
+            len[k] += (size_t)snprintf(text[k] + len[k], cap - len[k], "%s%s%s\nvt%s%s\n", k ? " " : "", line,
+                                       i % 3 ? "" : " # n", k ? " " : "", i % 3 == 0 ? " 0.5" : i % 3 == 1 ? " 0.5 0.25" : " 0.5 0.25 0");
+    }
+    for (int i = 0; i < NN; i++)
+        for (int k = 0; k < 2; k++)
+            len[k] += (size_t)snprintf(text[k] + len[k], cap - len[k], "f 1/%d/%d 2/%d/%d 3/%d/%d\n", i + 1, i + 1,
+                                       i + 1, i + 1, i + 1, i + 1);
+    RfScene sc[2];
+    char err[512];
+    for (int k = 0; k < 2; k++)
+        RF_CHECK_EQ_INT(read_obj(text[k], &sc[k], err, sizeof err), RF_OK);
+    RF_CHECK(rf_fuzz_same_scene(&sc[0], &sc[1]));
+    RF_CHECK_EQ_INT(sc[0].normal_count, 3 * NN);
+    int exact = 1;
+    for (size_t n = 0; n < sc[0].normal_count && n < 3 * NN; n++)
+        exact &= sc[0].normals[n].x == want[n / 3].x && sc[0].normals[n].y == want[n / 3].y &&
+                 sc[0].normals[n].z == want[n / 3].z;
+    RF_CHECK(exact);
+    for (int k = 0; k < 2; k++) {
+        rf_scene_free(&sc[k]);
+        free(text[k]);
+    }
+    free(want);
+}
+
 /* The faces go into the scene in chunks of 16,384 on the load's threads (obj.c, emit_faces):
  * 40,000 faces (three chunks) of every kind the reader knows, loaded on 1, 2 and 3 threads,
  * make the same scene, and one face after another as the file lists them; the first failing
@@ -717,22 +770,9 @@ static void test_obj_threads(void)
     for (int f = 0; f < TF_FACES; f++)
         want += !(f % 5 != 3 && f % 11 == 7);
     RF_CHECK(sc[0].prim_count == want);
-    int same = 1, in_order = 1;
-    for (int k = 1; k < 3; k++) {
-        same &= sc[k].prim_count == sc[0].prim_count && sc[k].vertex_count == sc[0].vertex_count &&
-                sc[k].normal_count == sc[0].normal_count && sc[k].material_count == sc[0].material_count;
-        if (!same)
-            break;
-        same &= memcmp(sc[k].vertices, sc[0].vertices, sizeof *sc[0].vertices * sc[0].vertex_count) == 0;
-        same &= memcmp(sc[k].normals, sc[0].normals, sizeof *sc[0].normals * sc[0].normal_count) == 0;
-        for (size_t p = 0; p < sc[0].prim_count; p++) {
-            const RfPrimitive *a = &sc[0].prims[p], *b = &sc[k].prims[p];
-            same &= a->type == b->type && a->flags == b->flags && a->material == b->material &&
-                    a->loc.line == b->loc.line && a->u.poly.first == b->u.poly.first &&
-                    a->u.poly.count == b->u.poly.count && a->u.poly.nfirst == b->u.poly.nfirst;
-        }
-    }
-    RF_CHECK(same);
+    int in_order = 1;
+    for (int k = 1; k < 3; k++)
+        RF_CHECK(rf_fuzz_same_scene(&sc[k], &sc[0]));
     size_t smooth = 0, quads = 0;
     for (size_t p = 0; p < sc[0].prim_count; p++) {
         const RfPrimitive *a = &sc[0].prims[p];
@@ -761,9 +801,151 @@ static void test_obj_threads(void)
     free(text);
 }
 
+/* The parse in chunks on several threads (obj.c, parse_chunks) against the parse line by line:
+ * an OBJ of ~1 MB (some sixty chunks) with every kind of line the chunks take (v, vn, vt, f in
+ * all four forms and as quads, comments after faces, empty lines and comments, CRLF ends,
+ * mtllib, usemtl, s, o, g) gives the same scene on 1, 2 and 3 threads, with the materials and
+ * smoothing the file says (counted here). Lines the fast path leaves to the statement readers
+ * (17 digits, negative indices, v with w) are read in their chunk; a line of another kind (l)
+ * or a failing v or f line makes the file read line by line; errors are the file's first. */
+enum { PC_GRID = 120, PC_FACES = 30000 };
+enum { PC_CLEAN, PC_NEGATIVE, PC_VERTEX_W, PC_LINE, PC_BAD_MTL_THEN_FACE, PC_BAD_FACE, PC_BAD_FACE_THEN_MTL,
+       PC_BARE_S, PC_BAD_MTL, PC_VARIANTS };
+
+typedef struct {
+    size_t blue, flat; /* faces with the material blue; without normals (s off, no vn) */
+    int err_line;      /* the first error's line, 0 for none */
+} ChunksWant;
+
+static char *chunks_obj(int variant, ChunksWant *w)
+{
+    size_t cap = (size_t)96 * (PC_GRID * PC_GRID + 2 * PC_FACES), len = 0;
+    char *t = malloc(cap);
+    int line = 1, blue = 0, flat = 0;
+    memset(w, 0, sizeof *w);
+#define PC_PUT(...) (len += (size_t)snprintf(t + len, cap - len, __VA_ARGS__), line++)
+    PC_PUT("# chunks test\r\n");
+    PC_PUT("mtllib m.mtl\n");
+    PC_PUT("o body\n");
+    PC_PUT("vt 0 0\n");
+    PC_PUT("vt 1 0 0.5\n");
+    PC_PUT("vt 0.5 1\n");
+    PC_PUT("vn 0 0 1\n");
+    PC_PUT("vn 0 0.6 0.8\n");
+    for (int i = 0; i < PC_GRID * PC_GRID; i++) {
+        PC_PUT("v %d %d %.17g%s", i % PC_GRID, i / PC_GRID, 0.01 * (i % 7) * (i % 5), i % 7 == 3 ? "\r\n" : "\n");
+        if (i % 50 == 49) {
+            PC_PUT("\n");
+            PC_PUT("# row %d\n", i);
+        }
+    }
+    for (int f = 0; f < PC_FACES; f++) {
+        int cell = f % ((PC_GRID - 1) * (PC_GRID - 1)), r = cell / (PC_GRID - 1), c = cell % (PC_GRID - 1);
+        int a = r * PC_GRID + c + 1, b = a + 1, d = a + PC_GRID, e = d + 1;
+        if (f % 3000 == 0) {
+            blue = (f / 3000) % 2;
+            PC_PUT("usemtl %s\n", blue ? "blue" : "red");
+        }
+        if (f % 4500 == 0) {
+            flat = (f / 4500) % 2 == 0;
+            PC_PUT("s %s\n", flat ? "off" : "3");
+        }
+        if (f % 7000 == 0)
+            PC_PUT("g part%d\n", f);
+        if ((variant == PC_NEGATIVE && f == 20000) || (variant == PC_VERTEX_W && f == 15000) ||
+            (variant == PC_LINE && f == 10000)) {
+            PC_PUT("%s\n", variant == PC_NEGATIVE ? "f -1 -2 -121" : variant == PC_VERTEX_W ? "v 0.5 0.5 0.5 1" : "l 1 2");
+            w->blue += variant == PC_NEGATIVE && blue;
+            w->flat += variant == PC_NEGATIVE && flat;
+        }
+        if ((f == 8000 && variant == PC_BAD_MTL_THEN_FACE) || (f == 26000 && variant == PC_BAD_FACE_THEN_MTL) ||
+            (f == 27000 && variant == PC_BAD_MTL)) {
+            if (!w->err_line)
+                w->err_line = line;
+            PC_PUT("usemtl green\n");
+        }
+        if ((f == 25000 && (variant == PC_BAD_MTL_THEN_FACE || variant == PC_BAD_FACE)) ||
+            (f == 12000 && variant == PC_BAD_FACE_THEN_MTL)) {
+            if (!w->err_line)
+                w->err_line = line;
+            PC_PUT("%s\n", f == 12000 ? "f 0 1 2" : "f 1 2 99999");
+        }
+        if (f == 22000 && variant == PC_BARE_S) {
+            w->err_line = line;
+            PC_PUT("s\n");
+        }
+        switch (f % 4) {
+        case 0: PC_PUT("f %d %d %d%s\n", a, b, e, f % 13 == 0 ? " # note" : ""); break;
+        case 1: PC_PUT("f %d/1 %d/2 %d/3\n", a, b, e); break;
+        case 2: PC_PUT("f %d//1 %d//2 %d//1\n", a, b, e); break;
+        default: PC_PUT("f %d/1/1 %d/2/2 %d/3/1 %d/1/2\n", a, b, e, d);
+        }
+        w->blue += blue;
+        w->flat += flat && (f % 4 == 0 || f % 4 == 1);
+    }
+#undef PC_PUT
+    return t;
+}
+
+static void test_obj_parse_chunks(void)
+{
+    static const char *const files[] = {"m.mtl", "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n", NULL};
+    static const int chunked_want[PC_VARIANTS] = {1, 1, 1, 0, 0, 0, 0, 1, 1};
+    char dir[256], name[512];
+    RF_CHECK(write_files(dir, sizeof dir, files));
+    snprintf(name, sizeof name, "%s/t.obj", dir);
+    for (int v = 0; v < PC_VARIANTS; v++) {
+        ChunksWant w;
+        char *text = chunks_obj(v, &w);
+        size_t len = strlen(text);
+        RF_CHECK(len > 16 * 16384);
+        RfScene sc[3];
+        RfStatus st[3];
+        char err[3][512];
+        for (int k = 0; k < 3; k++) {
+            RfObjPlacement pl = {60.0, -1, 0u, k + 1, NULL};
+            int chunked = -1;
+            pl.chunked = &chunked;
+            rf_scene_init(&sc[k]);
+            st[k] = rf__obj_read(name, text, len, &pl, &sc[k], err[k], sizeof err[k]);
+            RF_CHECK_EQ_INT(chunked, k == 0 ? 0 : chunked_want[v]);
+        }
+        for (int k = 1; k < 3; k++) {
+            RF_CHECK_EQ_INT(st[k], st[0]);
+            if (st[0] == RF_OK)
+                RF_CHECK(rf_fuzz_same_scene(&sc[k], &sc[0]));
+            else
+                RF_CHECK_STR(err[k], err[0]);
+        }
+        if (w.err_line) {
+            char at[600];
+            snprintf(at, sizeof at, "%s:%d:", name, w.err_line);
+            RF_CHECK(st[0] != RF_OK && strncmp(err[0], at, strlen(at)) == 0);
+        } else {
+            RF_CHECK_EQ_INT(st[0], RF_OK);
+            size_t blue = 0, flat = 0;
+            for (size_t p = 0; p < sc[0].prim_count; p++) {
+                blue += strcmp(sc[0].materials[sc[0].prims[p].material].name, "blue") == 0;
+                flat += !(sc[0].prims[p].flags & RF_PRIM_VERTEX_NORMALS);
+            }
+            RF_CHECK_EQ_INT(sc[0].prim_count, PC_FACES + (v == PC_NEGATIVE));
+            RF_CHECK_EQ_INT(blue, w.blue);
+            RF_CHECK_EQ_INT(flat, w.flat);
+        }
+        if (st[0] != RF_OK && !w.err_line)
+            printf("  %s\n", err[0]);
+        for (int k = 0; k < 3; k++)
+            rf_scene_free(&sc[k]);
+        free(text);
+    }
+    remove_files(dir, files);
+}
+
 const RfTest rf_tests_mesh[] = {
     {"mesh_obj_threads_same_scene", test_obj_threads},
+    {"mesh_obj_parse_chunks", test_obj_parse_chunks},
     {"mesh_obj_fast_path", test_obj_fast_path},
+    {"mesh_obj_fast_normals", test_obj_fast_normals},
     {"mesh_obj_index_forms", test_obj_index_forms},
     {"mesh_obj_polygons", test_obj_polygons},
     {"mesh_obj_vertex_normals", test_obj_vertex_normals},

@@ -54,6 +54,7 @@ typedef struct {
     size_t nfaces, cap_faces;
     int material; /* current material, -1: the placement's */
     long group;
+    int fixed;    /* the arrays are sized already (one chunk of a parallel parse): never grown */
 } ObjReader;
 
 static int grow(void **arr, size_t *cap, size_t count, size_t elem)
@@ -69,6 +70,13 @@ static int grow(void **arr, size_t *cap, size_t count, size_t elem)
     *arr = p;
     *cap = c;
     return 1;
+}
+
+/* Room for one more element: grown, or, in a chunk of a parallel parse, within the chunk's
+ * share (counted before; a line that does not fit is read line by line). */
+static int room(const ObjReader *r, void **arr, size_t *cap, size_t count, size_t elem)
+{
+    return r->fixed ? count < *cap : grow(arr, cap, count, elem);
 }
 
 static int eol(const RfLexer *lx) { return lx->tok.kind == RF_TOK_EOF || lx->tok.bol; }
@@ -97,7 +105,7 @@ static RfStatus read_vertex(ObjReader *r, const RfToken *kw)
                           "'v' takes x y z and an optional w or r g b, found %d extra numbers", n);
     if (st)
         return st;
-    if (!grow((void **)&r->pos, &r->cap_pos, r->npos, sizeof *r->pos))
+    if (!room(r, (void **)&r->pos, &r->cap_pos, r->npos, sizeof *r->pos))
         return oom(r);
     r->pos[r->npos++] = v;
     (void)kw;
@@ -110,7 +118,7 @@ static RfStatus read_normal(ObjReader *r)
     RfStatus st = rf_lex_vec3(&r->lx, "normal component", &n);
     if (st)
         return st;
-    if (!grow((void **)&r->nrm, &r->cap_nrm, r->nnrm, sizeof *r->nrm))
+    if (!room(r, (void **)&r->nrm, &r->cap_nrm, r->nnrm, sizeof *r->nrm))
         return oom(r);
     r->nrm[r->nnrm++] = n;
     return RF_OK;
@@ -203,7 +211,7 @@ static RfStatus read_face(ObjReader *r, const RfToken *kw)
             return rf_lex_error(&r->lx, t.line, t.col, "face corner %s is %s, the first corner was %s: one form per face",
                                 rf_lex_quote(&t, q, sizeof q), forms[form], forms[form0]);
         form0 = form;
-        if (f.n == INT32_MAX || !grow((void **)&r->corners, &r->cap_corners, r->ncorners, sizeof c))
+        if (f.n == INT32_MAX || !room(r, (void **)&r->corners, &r->cap_corners, r->ncorners, sizeof c))
             return oom(r);
         r->corners[r->ncorners++] = c;
         f.n++;
@@ -212,7 +220,7 @@ static RfStatus read_face(ObjReader *r, const RfToken *kw)
     if (f.n < 3)
         return rf_lex_error(&r->lx, kw->line, kw->col, "a face needs at least 3 vertices, found %d", f.n);
     f.has_vn = form0 >= 2;
-    if (!grow((void **)&r->faces, &r->cap_faces, r->nfaces, sizeof f))
+    if (!room(r, (void **)&r->faces, &r->cap_faces, r->nfaces, sizeof f))
         return oom(r);
     r->faces[r->nfaces++] = f;
     return RF_OK;
@@ -343,22 +351,48 @@ static int token_end(const char *s, const char *end)
     return s == end || *s == ' ' || *s == '\t' || *s == '\r' || *s == '#';
 }
 
-static int fast_vertex(ObjReader *r, const char *s, const char *end)
+/* Between `least` and `most` plain decimals up to the line's end or comment, as the statement
+ * readers would read them: their count, or -1 for anything else. */
+static inline int fast_decimals(const char *s, const char *end, double *c, int least, int most)
 {
-    double c[3];
-    for (int k = 0; k < 3; k++) {
+    int n = 0;
+    for (; n < most; n++) {
         s = skip_blanks(s, end);
-        const char *e = rf_lex_decimal(s, end, &c[k]);
+        if (n >= least && (s == end || *s == '#'))
+            return n;
+        const char *e = rf_lex_decimal(s, end, &c[n]);
         if (!e || e - s >= 80 || !token_end(e, end))
-            return 0;
+            return -1;
         s = e;
     }
     s = skip_blanks(s, end);
-    if (s < end && *s != '#')
-        return 0;
-    if (!grow((void **)&r->pos, &r->cap_pos, r->npos, sizeof *r->pos))
+    return s == end || *s == '#' ? n : -1;
+}
+
+static int fast_vertex(ObjReader *r, const char *s, const char *end)
+{
+    double c[3];
+    if (fast_decimals(s, end, c, 3, 3) < 0 || !room(r, (void **)&r->pos, &r->cap_pos, r->npos, sizeof *r->pos))
         return 0;
     r->pos[r->npos++] = rf_vec3(c[0], c[1], c[2]);
+    return 1;
+}
+
+static int fast_normal(ObjReader *r, const char *s, const char *end)
+{
+    double c[3];
+    if (fast_decimals(s, end, c, 3, 3) < 0 || !room(r, (void **)&r->nrm, &r->cap_nrm, r->nnrm, sizeof *r->nrm))
+        return 0;
+    r->nrm[r->nnrm++] = rf_vec3(c[0], c[1], c[2]);
+    return 1;
+}
+
+static int fast_texcoord(ObjReader *r, const char *s, const char *end)
+{
+    double c[3];
+    if (fast_decimals(s, end, c, 1, 3) < 0)
+        return 0;
+    r->ntex++; /* counted, for the faces' index checks */
     return 1;
 }
 
@@ -415,13 +449,13 @@ static int fast_face(ObjReader *r, const char *s, const char *end, int line)
             }
         }
         if (!token_end(s, end) || (form0 >= 0 && form != form0) || f.n == INT32_MAX ||
-            !grow((void **)&r->corners, &r->cap_corners, r->ncorners, sizeof c))
+            !room(r, (void **)&r->corners, &r->cap_corners, r->ncorners, sizeof c))
             goto slow;
         form0 = form;
         r->corners[r->ncorners++] = c;
         f.n++;
     }
-    if (f.n < 3 || !grow((void **)&r->faces, &r->cap_faces, r->nfaces, sizeof f))
+    if (f.n < 3 || !room(r, (void **)&r->faces, &r->cap_faces, r->nfaces, sizeof f))
         goto slow;
     f.has_vn = form0 >= 2;
     r->faces[r->nfaces++] = f;
@@ -431,15 +465,47 @@ slow:
     return 0;
 }
 
-static int fast_line(ObjReader *r, const char *s, const char *end, int line)
+/* The kinds of line the fast path reads (v, vn, vt, f followed by a blank), the lines that are
+ * nothing (empty, a comment, a lone carriage return), the statements that set the state of the
+ * faces after them or name things (s, usemtl, mtllib, o, g), and every other line. */
+typedef enum { LINE_NONE, LINE_V, LINE_VN, LINE_VT, LINE_F, LINE_STATE, LINE_OTHER } LineKind;
+
+/* Does the line start with the keyword kw, then a blank (or, when bare_ok, its end)? */
+static int starts_with_keyword(const char *s, const char *end, const char *kw, int bare_ok)
 {
-    if (end - s < 2 || (s[1] != ' ' && s[1] != '\t'))
+    size_t n = strlen(kw);
+    if ((size_t)(end - s) < n || memcmp(s, kw, n) != 0)
         return 0;
-    if (s[0] == 'v')
-        return fast_vertex(r, s + 2, end);
-    if (s[0] == 'f')
-        return fast_face(r, s + 2, end, line);
-    return 0;
+    return s + n == end ? bare_ok : s[n] == ' ' || s[n] == '\t' || (bare_ok && s[n] == '\r');
+}
+
+static inline LineKind line_kind(const char *s, const char *end)
+{
+    static const char *const state[] = {"s", "usemtl", "mtllib", "o", "g"};
+    size_t n = (size_t)(end - s);
+    if (n == 0 || *s == '#' || (n == 1 && *s == '\r'))
+        return LINE_NONE;
+    if (n >= 2 && (s[1] == ' ' || s[1] == '\t')) /* the common lines first, without a call */
+        return s[0] == 'v' ? LINE_V : s[0] == 'f' ? LINE_F : s[0] == 's' || s[0] == 'o' || s[0] == 'g' ? LINE_STATE : LINE_OTHER;
+    if (n >= 3 && s[0] == 'v' && (s[2] == ' ' || s[2] == '\t'))
+        return s[1] == 'n' ? LINE_VN : s[1] == 't' ? LINE_VT : LINE_OTHER;
+    for (size_t i = 0; i < sizeof state / sizeof state[0]; i++)
+        if (starts_with_keyword(s, end, state[i], 1))
+            return LINE_STATE;
+    return LINE_OTHER;
+}
+
+/* A line of kind v, vn, vt or f read by the fast path: 1, or 0 when the statement readers must
+ * read it. */
+static inline int fast_line(ObjReader *r, LineKind kind, const char *s, const char *end, int line)
+{
+    switch (kind) {
+    case LINE_V: return fast_vertex(r, s + 2, end);
+    case LINE_VN: return fast_normal(r, s + 3, end);
+    case LINE_VT: return fast_texcoord(r, s + 3, end);
+    case LINE_F: return fast_face(r, s + 2, end, line);
+    default: return 0;
+    }
 }
 
 /* ---- normals and faces into the scene ------------------------------------------------------ */
@@ -478,13 +544,16 @@ static RfStatus smoothing_init(const ObjReader *r, Smoothing *sm)
     sm->area = malloc(nf * sizeof *sm->area);
     sm->unit = malloc(nf * sizeof *sm->unit);
     sm->start = calloc(np + 1, sizeof *sm->start);
-    sm->list = malloc((r->ncorners ? r->ncorners : 1) * sizeof *sm->list);
+    int most = 3;
+    size_t corners = 1; /* the faces' (r->corners may have room between them: parse_chunks) */
+    for (size_t i = 0; i < r->nfaces; i++) {
+        most = r->faces[i].n > most ? r->faces[i].n : most;
+        corners += (size_t)r->faces[i].n;
+    }
+    sm->list = malloc(corners * sizeof *sm->list);
     if (!sm->area || !sm->unit || !sm->start || !sm->list)
         return RF_ERR_NOMEM;
     sm->cos_crease = cos(r->pl->crease_deg * (RF_PI / 180.0));
-    int most = 3;
-    for (size_t i = 0; i < r->nfaces; i++)
-        most = r->faces[i].n > most ? r->faces[i].n : most;
     RfVec3 *buf = malloc(sizeof *buf * (size_t)most);
     if (!buf)
         return RF_ERR_NOMEM;
@@ -495,8 +564,9 @@ static RfStatus smoothing_init(const ObjReader *r, Smoothing *sm)
         sm->unit[i] = len > 0.0 ? rf_vec3_scale(sm->area[i], 1.0 / len) : rf_vec3(0, 0, 0);
     }
     free(buf);
-    for (size_t c = 0; c < r->ncorners; c++)
-        sm->start[r->corners[c].v + 1]++;
+    for (size_t i = 0; i < r->nfaces; i++)
+        for (int k = 0; k < r->faces[i].n; k++)
+            sm->start[r->corners[r->faces[i].first + (size_t)k].v + 1]++;
     for (size_t v = 0; v < np; v++)
         sm->start[v + 1] += sm->start[v];
     size_t *fill = calloc(np, sizeof *fill);
@@ -714,41 +784,253 @@ static RfStatus emit_faces(ObjReader *r)
     return st == RF_ERR_NOMEM ? oom(r) : st;
 }
 
+/* One line through the statement readers, on a lexer over that line alone (line: its number). */
+static RfStatus slow_line(ObjReader *r, const char *s, const char *end, int line)
+{
+    char q[96];
+    RfStatus st = RF_OK;
+    rf_lex_init_at(&r->lx, r->lx.name, s, (size_t)(end - s), line, r->lx.err, r->lx.errsz);
+    while (!st && r->lx.tok.kind != RF_TOK_EOF) {
+        RfToken kw = r->lx.tok;
+        if (kw.kind != RF_TOK_WORD || !kw.bol)
+            return rf_lex_error(&r->lx, kw.line, kw.col, "expected an OBJ keyword at the start of a line, found %s",
+                                rf_lex_quote(&kw, q, sizeof q));
+        rf_lex_advance(&r->lx);
+        st = read_statement(r, &kw);
+        if (!st && !eol(&r->lx))
+            st = rf_lex_error(&r->lx, r->lx.tok.line, r->lx.tok.col, "too many values for %s",
+                              rf_lex_quote(&kw, q, sizeof q));
+    }
+    return st;
+}
+
+/* The end of the line that starts at s: its newline, or end. */
+static const char *line_end(const char *s, const char *end)
+{
+    const char *nl = memchr(s, '\n', (size_t)(end - s));
+    return nl ? nl : end;
+}
+
+/* Line by line, one after another: OBJ statements end with their line (the fast path, or the
+ * statement readers). */
+static RfStatus parse_lines(ObjReader *r, const char *text, size_t len)
+{
+    RfStatus st = RF_OK;
+    const char *p = text, *end = text + len;
+    for (int line = 1; !st && p < end; line++) {
+        const char *le = line_end(p, end);
+        if (!fast_line(r, line_kind(p, le), p, le, line))
+            st = slow_line(r, p, le, line);
+        p = le < end ? le + 1 : end;
+    }
+    return st;
+}
+
+/* ---- the parse on several threads ----------------------------------------------------------
+ * A file whose lines are all v, vn, vt, f, nothing or state statements (s, usemtl, mtllib, o,
+ * g) is read in chunks of whole lines on every thread. A scan counts each chunk's lines,
+ * vertices, normals, texture coordinates and faces (and room for its corners: as many as its f
+ * lines could hold, each face pointing at its own), so that every chunk writes straight into
+ * the places reading the file in order would give; a chunk reads its lines by the fast path or,
+ * when that declines, by the statement readers, counting from what the chunks before it hold.
+ * Then the state statements run in the file's order through the statement readers (their
+ * material files are read there, and their errors are the file's first: every other line has
+ * been read by then), and the faces after each get its material and smoothing group. A line of
+ * any other kind, or one that fails, and the file is read one line after another instead
+ * (parse_lines), before anything reached the scene: the same arrays, the same scene and the
+ * same errors for any number of threads. */
+enum { PARSE_CHUNK = 1 << 14 }; /* bytes per chunk (then to the end of its last line) */
+
+typedef struct {
+    const char *at; /* the line */
+    int line;       /* its number within the chunk (0: the first) */
+    size_t faces;   /* faces of the chunk before it */
+} StateLine;
+
+typedef struct {
+    const char *lo, *hi;                              /* whole lines, each with its newline */
+    size_t lines, pos, nrm, tex, faces;               /* counted by the scan */
+    size_t corners;                                   /* room for the faces' corners */
+    size_t line0, pos0, nrm0, tex0, faces0, corners0; /* before the chunk */
+    StateLine *state;
+    size_t nstate, cap_state;
+    int other; /* the scan met a line of another kind (or ran out of memory) */
+    int taken; /* every v, vn, vt and f line read, and the counts came out as the scan's */
+} ParseChunk;
+
+typedef struct {
+    ObjReader *r;
+    ParseChunk *chunks;
+} ParseJob;
+
+/* At most this many corners on an f line of len bytes after "f ": each takes a character and
+ * a blank before the next. */
+static size_t most_corners(size_t len) { return (len + 1) / 2; }
+
+static int scan_chunk(void *ctx, int ci, int thread)
+{
+    ParseChunk *c = &((ParseJob *)ctx)->chunks[ci];
+    (void)thread;
+    for (const char *p = c->lo; p < c->hi && !c->other; c->lines++) {
+        const char *le = line_end(p, c->hi);
+        switch (line_kind(p, le)) {
+        case LINE_NONE: break;
+        case LINE_V: c->pos++; break;
+        case LINE_VN: c->nrm++; break;
+        case LINE_VT: c->tex++; break;
+        case LINE_F:
+            c->faces++;
+            c->corners += most_corners((size_t)(le - p - 2));
+            break;
+        case LINE_STATE:
+            if (!grow((void **)&c->state, &c->cap_state, c->nstate, sizeof *c->state)) {
+                c->other = 1;
+                break;
+            }
+            c->state[c->nstate].at = p;
+            c->state[c->nstate].line = (int)c->lines;
+            c->state[c->nstate++].faces = c->faces;
+            break;
+        default: c->other = 1;
+        }
+        p = le < c->hi ? le + 1 : c->hi;
+    }
+    return 0;
+}
+
+static int read_chunk(void *ctx, int ci, int thread)
+{
+    ParseJob *j = ctx;
+    ParseChunk *c = &j->chunks[ci];
+    ObjReader r = *j->r; /* this chunk's share of the arrays, from the counts before it */
+    (void)thread;
+    r.npos = c->pos0, r.cap_pos = c->pos0 + c->pos;
+    r.nnrm = c->nrm0, r.cap_nrm = c->nrm0 + c->nrm;
+    r.ntex = c->tex0;
+    r.nfaces = c->faces0, r.cap_faces = c->faces0 + c->faces;
+    r.ncorners = c->corners0, r.cap_corners = c->corners0 + c->corners;
+    r.fixed = 1;
+    r.lx.err = NULL; /* a failing line is read again line by line, which writes the message */
+    r.lx.errsz = 0;
+    int line = (int)c->line0 + 1;
+    for (const char *p = c->lo; p < c->hi; line++) {
+        const char *le = line_end(p, c->hi);
+        LineKind kind = line_kind(p, le);
+        if (kind != LINE_NONE && kind != LINE_STATE && !fast_line(&r, kind, p, le, line) &&
+            slow_line(&r, p, le, line) != RF_OK)
+            return 0; /* not taken */
+        p = le < c->hi ? le + 1 : c->hi;
+    }
+    c->taken = r.npos == r.cap_pos && r.nnrm == r.cap_nrm && r.ntex == c->tex0 + c->tex && r.nfaces == r.cap_faces;
+    return 0;
+}
+
+/* The faces [from, to) get the current material and smoothing group (the fast path gave them
+ * the first: no usemtl, smooth). */
+static void set_state(ObjReader *r, size_t from, size_t to)
+{
+    if (r->material == -1 && r->group == 1)
+        return;
+    for (size_t i = from; i < to; i++) {
+        r->faces[i].material = r->material;
+        r->faces[i].group = r->group;
+    }
+}
+
+/* The state statements in the file's order, and the material and smoothing group of the faces
+ * after each. */
+static RfStatus run_state_lines(ObjReader *r, const ParseChunk *chunks, size_t nchunks)
+{
+    size_t from = 0; /* the faces before it have their state */
+    for (size_t ci = 0; ci < nchunks; ci++)
+        for (size_t k = 0; k < chunks[ci].nstate; k++) {
+            const StateLine *sl = &chunks[ci].state[k];
+            set_state(r, from, chunks[ci].faces0 + sl->faces);
+            from = chunks[ci].faces0 + sl->faces;
+            RfStatus st = slow_line(r, sl->at, line_end(sl->at, chunks[ci].hi),
+                                    (int)(chunks[ci].line0 + (size_t)sl->line) + 1);
+            if (st)
+                return st;
+        }
+    set_state(r, from, r->nfaces);
+    return RF_OK;
+}
+
+/* The parallel parse; *taken = 0 when the file must be read line by line instead (r unchanged). */
+static RfStatus parse_chunks(ObjReader *r, const char *text, size_t len, int threads, int *taken)
+{
+    size_t nchunks = len / PARSE_CHUNK + 1;
+    ParseJob j;
+    RfStatus st = RF_OK;
+    *taken = 0;
+    if (nchunks > INT_MAX || !(j.chunks = calloc(nchunks, sizeof *j.chunks)))
+        return RF_OK; /* line by line, which needs less memory */
+    j.r = r;
+    const char *p = text, *end = text + len;
+    for (size_t ci = 0; ci < nchunks; ci++) { /* whole lines with their newlines, ~PARSE_CHUNK bytes */
+        const char *hi = end;
+        if ((size_t)(end - p) > PARSE_CHUNK) {
+            const char *nl = line_end(p + PARSE_CHUNK, end);
+            hi = nl < end ? nl + 1 : end;
+        }
+        j.chunks[ci].lo = p;
+        j.chunks[ci].hi = p = hi;
+    }
+    int ok = rf_parallel_for((int)nchunks, threads, scan_chunk, NULL, &j) == RF_OK;
+    size_t lines = 0, pos = 0, nrm = 0, tex = 0, faces = 0, corners = 0;
+    for (size_t ci = 0; ok && ci < nchunks; ci++) {
+        ParseChunk *c = &j.chunks[ci];
+        ok = !c->other;
+        c->line0 = lines, c->pos0 = pos, c->nrm0 = nrm, c->tex0 = tex, c->faces0 = faces, c->corners0 = corners;
+        lines += c->lines, pos += c->pos, nrm += c->nrm, tex += c->tex, faces += c->faces, corners += c->corners;
+    }
+    ok = ok && lines < INT_MAX;
+    if (ok) {
+        r->pos = malloc((pos + 1) * sizeof *r->pos);
+        r->nrm = malloc((nrm + 1) * sizeof *r->nrm);
+        r->faces = malloc((faces + 1) * sizeof *r->faces);
+        r->corners = malloc((corners + 1) * sizeof *r->corners);
+        ok = r->pos && r->nrm && r->faces && r->corners &&
+             rf_parallel_for((int)nchunks, threads, read_chunk, NULL, &j) == RF_OK;
+        for (size_t ci = 0; ok && ci < nchunks; ci++)
+            ok = j.chunks[ci].taken;
+        if (ok) {
+            r->npos = r->cap_pos = pos;
+            r->nnrm = r->cap_nrm = nrm;
+            r->ntex = tex;
+            r->nfaces = r->cap_faces = faces;
+            r->ncorners = r->cap_corners = corners;
+            *taken = 1;
+            st = run_state_lines(r, j.chunks, nchunks);
+        } else {
+            free(r->pos), free(r->nrm), free(r->faces), free(r->corners);
+            r->pos = r->nrm = NULL, r->faces = NULL, r->corners = NULL;
+        }
+    }
+    for (size_t ci = 0; ci < nchunks; ci++)
+        free(j.chunks[ci].state);
+    free(j.chunks);
+    return st;
+}
+
 RfStatus rf__obj_read(const char *name, const char *text, size_t len, const RfObjPlacement *pl,
                       RfScene *scene, char *err, size_t errsz)
 {
     ObjReader r;
-    char q[96];
     RfStatus st = RF_OK;
+    int taken = 0, threads = pl->threads > 0 ? pl->threads : rf_cpu_count();
     memset(&r, 0, sizeof r);
     r.scene = scene;
     r.pl = pl;
     r.material = -1;
     r.group = 1; /* smooth unless the file says `s off` */
     rf_lex_init(&r.lx, name, text, len, err, errsz);
-    /* line by line: OBJ statements end with their line (the fast path, or the statement
-     * readers on a lexer over that line alone) */
-    const char *p = text, *end = text + len;
-    for (int line = 1; !st && p < end; line++) {
-        const char *nl = memchr(p, '\n', (size_t)(end - p)), *le = nl ? nl : end;
-        if (!fast_line(&r, p, le, line)) {
-            rf_lex_init_at(&r.lx, name, p, (size_t)(le - p), line, err, errsz);
-            while (!st && r.lx.tok.kind != RF_TOK_EOF) {
-                RfToken kw = r.lx.tok;
-                if (kw.kind != RF_TOK_WORD || !kw.bol) {
-                    st = rf_lex_error(&r.lx, kw.line, kw.col, "expected an OBJ keyword at the start of a line, found %s",
-                                      rf_lex_quote(&kw, q, sizeof q));
-                    break;
-                }
-                rf_lex_advance(&r.lx);
-                st = read_statement(&r, &kw);
-                if (!st && !eol(&r.lx))
-                    st = rf_lex_error(&r.lx, r.lx.tok.line, r.lx.tok.col, "too many values for %s",
-                                      rf_lex_quote(&kw, q, sizeof q));
-            }
-        }
-        p = nl ? nl + 1 : end;
-    }
+    if (threads > 1 && len >= 2 * PARSE_CHUNK)
+        st = parse_chunks(&r, text, len, threads, &taken);
+    if (!taken)
+        st = parse_lines(&r, text, len);
+    if (pl->chunked)
+        *pl->chunked = taken;
     if (!st)
         st = emit_faces(&r);
     free(r.pos);
@@ -807,6 +1089,7 @@ RfStatus rf_scene_read_obj(const char *name, const char *text, size_t len,
     pl.material = -1;
     pl.prim_flags = 0;
     pl.threads = opt->threads;
+    pl.chunked = NULL;
     rf_scene_init(scene);
     scene->format = RF_FORMAT_OBJ;
     RfStatus st = rf__obj_read(name, text, len, &pl, scene, err, errsz);

@@ -51,7 +51,10 @@ typedef struct {
     double crease_deg;   /* edges sharper than this keep separate normals per corner (§3.6.3) */
     int material;        /* material of faces before any usemtl; -1: a white "default" one */
     unsigned prim_flags; /* added to every face (RF_PRIM_IN_OBJECT inside an object) */
-    int threads;         /* the faces into the scene on this many threads (0: every processor) */
+    int threads;         /* the file read and its faces put into the scene on this many threads
+                            (0: every processor) */
+    int *chunked;        /* when not NULL, set to whether the file was read in chunks on several
+                            threads (obj.c, parse_chunks) or line by line: for the tests */
 } RfObjPlacement;
 /* rf_scene_read_rf with load options (their thread count reaches its `mesh` statements). */
 RfStatus rf__scene_read_rf(const char *name, const char *text, size_t len, const RfLoadOptions *opt,

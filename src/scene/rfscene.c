@@ -700,6 +700,7 @@ static RfStatus read_mesh(RfReader *r, const RfToken *kw)
     pl.material = r->material;
     pl.prim_flags = r->object >= 0 ? RF_PRIM_IN_OBJECT : 0u;
     pl.threads = r->threads;
+    pl.chunked = NULL;
     if (rf_lex_at_statement_start(lx))
         return rf_lex_error(lx, lx->last_end_line, lx->last_end_col, "mesh needs an OBJ file name");
     file = lx->tok; /* any token: "./a.obj" reads as a number */
