@@ -1,7 +1,11 @@
 /* The `refray` command: dispatches to the subcommands. */
+#include <limits.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "cli.h"
 #include "exit_codes.h"
@@ -37,8 +41,22 @@ static void usage(FILE *out)
     fprintf(out, "\n'refray COMMAND --help' tells more.\n");
 }
 
+/* Large blocks from the heap, and memory freed kept there for the next ones: a render frees
+ * the OBJ reader's arrays and then the BVH build's records just before it asks for as much
+ * again, and every fresh page costs a fault and clearing (glibc hands blocks over 32 MB out as
+ * their own mappings and unmaps them when freed). The process's peak grows by what it holds
+ * freed; docs/performance.md measures both. */
+static void reuse_freed_memory(void)
+{
+#if defined(__GLIBC__)
+    mallopt(M_MMAP_MAX, 0);
+    mallopt(M_TRIM_THRESHOLD, INT_MAX);
+#endif
+}
+
 int main(int argc, char **argv)
 {
+    reuse_freed_memory();
     /* a file-size limit fails the write (EFBIG), which cleans up, instead of killing the process
      * with a temporary file left behind */
     signal(SIGXFSZ, SIG_IGN);
