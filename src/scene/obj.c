@@ -369,21 +369,13 @@ static inline int fast_decimals(const char *s, const char *end, double *c, int l
     return s == end || *s == '#' ? n : -1;
 }
 
-static int fast_vertex(ObjReader *r, const char *s, const char *end)
+/* v x y z or vn x y z: three plain decimals into arr (a position or a normal) */
+static int fast_vec3(ObjReader *r, const char *s, const char *end, RfVec3 **arr, size_t *count, size_t *cap)
 {
     double c[3];
-    if (fast_decimals(s, end, c, 3, 3) < 0 || !room(r, (void **)&r->pos, &r->cap_pos, r->npos, sizeof *r->pos))
+    if (fast_decimals(s, end, c, 3, 3) < 0 || !room(r, (void **)arr, cap, *count, sizeof **arr))
         return 0;
-    r->pos[r->npos++] = rf_vec3(c[0], c[1], c[2]);
-    return 1;
-}
-
-static int fast_normal(ObjReader *r, const char *s, const char *end)
-{
-    double c[3];
-    if (fast_decimals(s, end, c, 3, 3) < 0 || !room(r, (void **)&r->nrm, &r->cap_nrm, r->nnrm, sizeof *r->nrm))
-        return 0;
-    r->nrm[r->nnrm++] = rf_vec3(c[0], c[1], c[2]);
+    (*arr)[(*count)++] = rf_vec3(c[0], c[1], c[2]);
     return 1;
 }
 
@@ -500,8 +492,8 @@ static inline LineKind line_kind(const char *s, const char *end)
 static inline int fast_line(ObjReader *r, LineKind kind, const char *s, const char *end, int line)
 {
     switch (kind) {
-    case LINE_V: return fast_vertex(r, s + 2, end);
-    case LINE_VN: return fast_normal(r, s + 3, end);
+    case LINE_V: return fast_vec3(r, s + 2, end, &r->pos, &r->npos, &r->cap_pos);
+    case LINE_VN: return fast_vec3(r, s + 3, end, &r->nrm, &r->nnrm, &r->cap_nrm);
     case LINE_VT: return fast_texcoord(r, s + 3, end);
     case LINE_F: return fast_face(r, s + 2, end, line);
     default: return 0;
