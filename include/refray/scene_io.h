@@ -23,8 +23,9 @@ typedef struct {
     /* OBJ faces without `vn`: the crease angle in degrees (default 60). Adjacent faces of one
      * smoothing group meeting at a sharper angle keep separate normals per corner (§3.6.3). */
     double crease_angle;
-    /* OBJ faces (of .obj files and of the refray format's `mesh`) go into the scene on this
-     * many threads (0, the default: one per processor); the scene is the same for any count */
+    /* OBJ files (.obj files and the refray format's `mesh`) are read and their faces put into
+     * the scene on this many threads (0, the default: one per processor); the scene and any
+     * error are the same for any count */
     int threads;
 } RfLoadOptions;
 
