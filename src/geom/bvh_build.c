@@ -756,6 +756,7 @@ typedef struct {
     int32_t *ids;
     Payload *payload;
     double vmax[CHUNKS]; /* per chunk: max |coordinate| of a triangle vertex */
+    int cones[CHUNKS];   /* per chunk: its cones */
     int bad;
 } RefJob;
 
@@ -765,6 +766,7 @@ static int make_refs(void *ctx, int chunk, int thread)
     int n = j->desc->count;
     int lo = (int)((long long)n * chunk / CHUNKS), hi = (int)((long long)n * (chunk + 1) / CHUNKS);
     double vmax = 0.0;
+    int cones = 0;
     (void)thread;
     for (int i = lo; i < hi; i++) {
         Payload *pl = &j->payload[i];
@@ -803,8 +805,10 @@ static int make_refs(void *ctx, int chunk, int thread)
             j->refs[i].hi[a] = rf__widen_up(hi3[a]);
         }
         j->refs[i].lo[3] = j->refs[i].hi[3] = 0.0f;
+        cones += it.kind == RF_BVH_CONE;
     }
     j->vmax[chunk] = vmax;
+    j->cones[chunk] = cones;
     return 0;
 }
 
@@ -924,8 +928,11 @@ RfStatus rf_bvh_build(RfBvh *bvh, const RfBvhDesc *desc)
         goto done;
     }
     bvh->vmax = 0.0;
-    for (int i = 0; i < CHUNKS; i++)
+    int cones = 0;
+    for (int i = 0; i < CHUNKS; i++) {
         bvh->vmax = rj->vmax[i] > bvh->vmax ? rj->vmax[i] : bvh->vmax;
+        cones += rj->cones[i];
+    }
     free(rj);
     /* the top levels here, their subtrees on every thread */
     tl.task_size = n / (TASKS_PER_THREAD * threads);
@@ -997,9 +1004,6 @@ RfStatus rf_bvh_build(RfBvh *bvh, const RfBvhDesc *desc)
     bvh->nodes = aligned(sizeof *bvh->nodes * (size_t)c.count);
     bvh->blocks = aligned(sizeof *bvh->blocks * (size_t)blocks);
     bvh->others = malloc(sizeof *bvh->others * (size_t)others + 1);
-    int cones = 0;
-    for (int i = 0; i < n; i++)
-        cones += payload[i].kind == RF_BVH_CONE;
     bvh->cones = malloc(sizeof *bvh->cones * (size_t)cones + 1);
     leaf_node = malloc(sizeof *leaf_node * (size_t)leaves + 1);
     leaf_slot = malloc(sizeof *leaf_slot * (size_t)leaves + 1);
