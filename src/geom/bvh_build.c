@@ -320,8 +320,8 @@ static int halve(const Builder *b, int first, int count, Info *left, Info *right
 
 /* Chooses how to split refs[first, first + count) and partitions it in place; returns the
  * number that go left (0: make a leaf) and the two sides' Info. SAH over up to BINS bins per
- * axis (fewer for short ranges); halves the range when no bin split exists or the depth limit
- * is reached. */
+ * axis (fewer for short ranges; one axis for long ranges of big BVHs, ONE_AXIS_FROM); halves the
+ * range when no bin split exists or the depth limit is reached. */
 static int split(Builder *b, int first, int count, int depth, const Info *in, Info *left, Info *right)
 {
     int leaf_ok = count <= MAX_LEAF;
