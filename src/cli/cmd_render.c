@@ -236,7 +236,7 @@ int rf_cmd_render(int argc, char **argv)
     }
 
     rf_scene_init(&scene);
-    lopt.threads = opt.threads; /* a mesh's faces go into the scene on as many threads */
+    lopt.threads = opt.threads; /* a mesh is read and its faces go into the scene on as many */
     struct timespec load_start;
     clock_gettime(CLOCK_MONOTONIC, &load_start);
     if (rf_scene_load(scene_path, &lopt, &scene, err, sizeof err) != RF_OK) {

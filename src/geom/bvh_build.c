@@ -104,7 +104,7 @@ typedef struct {
 /* The bin of a centroid along each axis; binning and partitioning call the same routine, so
  * they agree bit for bit. */
 typedef struct {
-    float cmin[4], scale[4]; /* scale 0: an axis not split */
+    float cmin[4], scale[4]; /* scale 0: no extent, the axis cannot be split */
     int bins;
     int axis0, axis1;        /* the axes binned: [axis0, axis1) */
 } Binner;
@@ -346,9 +346,6 @@ static int split(Builder *b, int first, int count, int depth, const Info *in, In
         for (int a = 1; a < 3; a++)
             if (in->cbounds.hi[a] - in->cbounds.lo[a] > in->cbounds.hi[w] - in->cbounds.lo[w])
                 w = a;
-        for (int a = 0; a < 3; a++)
-            if (a != w)
-                bn.scale[a] = 0.0f;
         bn.axis0 = w, bn.axis1 = w + 1;
     }
     if (!any_axis) /* every centroid coincides */
@@ -373,7 +370,7 @@ static int split(Builder *b, int first, int count, int depth, const Info *in, In
     int best_axis = -1, best_bin = -1;
     Box4 best_l, best_r;
     int best_nt = 0;
-    for (int a = 0; a < 3; a++) {
+    for (int a = bn.axis0; a < bn.axis1; a++) {
         if (!(bn.scale[a] > 0.0f))
             continue;
         float right_cost[BINS];

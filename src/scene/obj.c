@@ -55,6 +55,7 @@ typedef struct {
     int material; /* current material, -1: the placement's */
     long group;
     int fixed;    /* the arrays are sized already (one chunk of a parallel parse): never grown */
+    int threads;  /* the placement's thread count, 0 resolved to one per processor */
 } ObjReader;
 
 static int grow(void **arr, size_t *cap, size_t count, size_t elem)
@@ -462,13 +463,13 @@ slow:
  * faces after them or name things (s, usemtl, mtllib, o, g), and every other line. */
 typedef enum { LINE_NONE, LINE_V, LINE_VN, LINE_VT, LINE_F, LINE_STATE, LINE_OTHER } LineKind;
 
-/* Does the line start with the keyword kw, then a blank (or, when bare_ok, its end)? */
-static int starts_with_keyword(const char *s, const char *end, const char *kw, int bare_ok)
+/* Does the line start with the keyword kw, then a blank or its end? */
+static int starts_with_keyword(const char *s, const char *end, const char *kw)
 {
     size_t n = strlen(kw);
     if ((size_t)(end - s) < n || memcmp(s, kw, n) != 0)
         return 0;
-    return s + n == end ? bare_ok : s[n] == ' ' || s[n] == '\t' || (bare_ok && s[n] == '\r');
+    return s + n == end || s[n] == ' ' || s[n] == '\t' || s[n] == '\r';
 }
 
 static inline LineKind line_kind(const char *s, const char *end)
@@ -482,7 +483,7 @@ static inline LineKind line_kind(const char *s, const char *end)
     if (n >= 3 && s[0] == 'v' && (s[2] == ' ' || s[2] == '\t'))
         return s[1] == 'n' ? LINE_VN : s[1] == 't' ? LINE_VT : LINE_OTHER;
     for (size_t i = 0; i < sizeof state / sizeof state[0]; i++)
-        if (starts_with_keyword(s, end, state[i], 1))
+        if (starts_with_keyword(s, end, state[i]))
             return LINE_STATE;
     return LINE_OTHER;
 }
@@ -529,19 +530,17 @@ static void smoothing_free(Smoothing *sm)
     free(sm->list);
 }
 
-static RfStatus smoothing_init(const ObjReader *r, Smoothing *sm)
+/* most: the corners of the largest face */
+static RfStatus smoothing_init(const ObjReader *r, int most, Smoothing *sm)
 {
     memset(sm, 0, sizeof *sm);
     size_t nf = r->nfaces ? r->nfaces : 1, np = r->npos + 1;
     sm->area = malloc(nf * sizeof *sm->area);
     sm->unit = malloc(nf * sizeof *sm->unit);
     sm->start = calloc(np + 1, sizeof *sm->start);
-    int most = 3;
     size_t corners = 1; /* the faces' (r->corners may have room between them: parse_chunks) */
-    for (size_t i = 0; i < r->nfaces; i++) {
-        most = r->faces[i].n > most ? r->faces[i].n : most;
+    for (size_t i = 0; i < r->nfaces; i++)
         corners += (size_t)r->faces[i].n;
-    }
     sm->list = malloc(corners * sizeof *sm->list);
     if (!sm->area || !sm->unit || !sm->start || !sm->list)
         return RF_ERR_NOMEM;
@@ -720,8 +719,6 @@ static RfStatus emit_faces(ObjReader *r)
     Smoothing sm;
     EmitJob j;
     int smooth = 0; /* some face gets its normals from its neighbours */
-    for (size_t i = 0; i < r->nfaces && !smooth; i++)
-        smooth = !r->faces[i].has_vn && r->faces[i].group != 0;
     memset(&sm, 0, sizeof sm);
     memset(&j, 0, sizeof j);
     size_t nchunks = (r->nfaces + EMIT_CHUNK - 1) / EMIT_CHUNK;
@@ -730,13 +727,14 @@ static RfStatus emit_faces(ObjReader *r)
     j.r = r;
     j.sm = &sm;
     j.most = 3;
-    for (size_t i = 0; i < r->nfaces; i++)
+    for (size_t i = 0; i < r->nfaces; i++) {
         j.most = r->faces[i].n > j.most ? r->faces[i].n : j.most;
+        smooth |= !r->faces[i].has_vn && r->faces[i].group != 0;
+    }
     j.keep = malloc(r->nfaces + 1);
     j.chunks = calloc(nchunks + 1, sizeof *j.chunks);
-    RfStatus st = !j.keep || !j.chunks ? RF_ERR_NOMEM : smooth ? smoothing_init(r, &sm) : RF_OK;
-    int threads = r->pl->threads > 0 ? r->pl->threads : rf_cpu_count();
-    if (!st && rf_parallel_for((int)nchunks, threads, emit_count, NULL, &j) != RF_OK)
+    RfStatus st = !j.keep || !j.chunks ? RF_ERR_NOMEM : smooth ? smoothing_init(r, j.most, &sm) : RF_OK;
+    if (!st && rf_parallel_for((int)nchunks, r->threads, emit_count, NULL, &j) != RF_OK)
         st = RF_ERR_NOMEM;
     size_t faces = 0, verts = 0, norms = 0;
     for (size_t c = 0; !st && c < nchunks; c++) {
@@ -758,7 +756,7 @@ static RfStatus emit_faces(ObjReader *r)
         scene->prim_count += faces; /* counted in: each face's check sees its own range */
         scene->vertex_count += verts;
         scene->normal_count += norms;
-        if (rf_parallel_for((int)nchunks, threads, emit_write, NULL, &j) != RF_OK)
+        if (rf_parallel_for((int)nchunks, r->threads, emit_write, NULL, &j) != RF_OK)
             st = RF_ERR_NOMEM;
         for (size_t c = 0; !st && c < nchunks; c++) /* the file's first failing face */
             if (j.chunks[c].st)
@@ -949,7 +947,7 @@ static RfStatus run_state_lines(ObjReader *r, const ParseChunk *chunks, size_t n
 }
 
 /* The parallel parse; *taken = 0 when the file must be read line by line instead (r unchanged). */
-static RfStatus parse_chunks(ObjReader *r, const char *text, size_t len, int threads, int *taken)
+static RfStatus parse_chunks(ObjReader *r, const char *text, size_t len, int *taken)
 {
     size_t nchunks = len / PARSE_CHUNK + 1;
     ParseJob j;
@@ -968,7 +966,7 @@ static RfStatus parse_chunks(ObjReader *r, const char *text, size_t len, int thr
         j.chunks[ci].lo = p;
         j.chunks[ci].hi = p = hi;
     }
-    int ok = rf_parallel_for((int)nchunks, threads, scan_chunk, NULL, &j) == RF_OK;
+    int ok = rf_parallel_for((int)nchunks, r->threads, scan_chunk, NULL, &j) == RF_OK;
     size_t lines = 0, pos = 0, nrm = 0, tex = 0, faces = 0, corners = 0;
     for (size_t ci = 0; ok && ci < nchunks; ci++) {
         ParseChunk *c = &j.chunks[ci];
@@ -983,7 +981,7 @@ static RfStatus parse_chunks(ObjReader *r, const char *text, size_t len, int thr
         r->faces = malloc((faces + 1) * sizeof *r->faces);
         r->corners = malloc((corners + 1) * sizeof *r->corners);
         ok = r->pos && r->nrm && r->faces && r->corners &&
-             rf_parallel_for((int)nchunks, threads, read_chunk, NULL, &j) == RF_OK;
+             rf_parallel_for((int)nchunks, r->threads, read_chunk, NULL, &j) == RF_OK;
         for (size_t ci = 0; ok && ci < nchunks; ci++)
             ok = j.chunks[ci].taken;
         if (ok) {
@@ -1010,15 +1008,16 @@ RfStatus rf__obj_read(const char *name, const char *text, size_t len, const RfOb
 {
     ObjReader r;
     RfStatus st = RF_OK;
-    int taken = 0, threads = pl->threads > 0 ? pl->threads : rf_cpu_count();
+    int taken = 0;
     memset(&r, 0, sizeof r);
     r.scene = scene;
     r.pl = pl;
+    r.threads = pl->threads > 0 ? pl->threads : rf_cpu_count();
     r.material = -1;
     r.group = 1; /* smooth unless the file says `s off` */
     rf_lex_init(&r.lx, name, text, len, err, errsz);
-    if (threads > 1 && len >= 2 * PARSE_CHUNK)
-        st = parse_chunks(&r, text, len, threads, &taken);
+    if (r.threads > 1 && len >= 2 * PARSE_CHUNK)
+        st = parse_chunks(&r, text, len, &taken);
     if (!taken)
         st = parse_lines(&r, text, len);
     if (pl->chunked)
