@@ -145,42 +145,34 @@ static inline unsigned node_test_scalar(const RfBvhNode *n, const RfBvhRay *r, f
 }
 
 #if RF_BVH_AVX
-/* The ray's slab constants broadcast once per query (they stay in registers). */
+/* The node test reads the ray's slab constants as broadcasts from the RfBvhRay: twelve ymm
+ * registers of constants do not stay in registers beside the test's own, and spilled copies cost
+ * the same load plus a broadcast and a store per query. */
 typedef struct {
-    __m256 org[2][3], inv[2][3];
-    const size_t *rows; /* RfBvhRay.rows */
+    const RfBvhRay *r;
 } NodeRay;
 
-static inline void node_axis(const RfBvhRay *r, NodeRay *nr, int a)
-{
-    for (int s = 0; s < 2; s++) {
-        nr->org[s][a] = _mm256_set1_ps(r->org[s][a]);
-        nr->inv[s][a] = _mm256_set1_ps(r->inv[s][a]);
-    }
-}
-
-static inline void node_ray(const RfBvhRay *r, NodeRay *nr)
-{
-    nr->rows = r->rows;
-    node_axis(r, nr, 0); /* written out: the compiler did not unroll the loop over the axes */
-    node_axis(r, nr, 1);
-    node_axis(r, nr, 2);
-}
+static inline void node_ray(const RfBvhRay *r, NodeRay *nr) { nr->r = r; }
 
 static inline __m256 row(const RfBvhNode *n, size_t off)
 {
     return _mm256_load_ps(row_scalar(n, off));
 }
 
+/* (row - org[s][a]) * inv[s][a] for the near (s = 0) or far (s = 1) plane of axis a */
+static inline __m256 slab(const RfBvhNode *n, const RfBvhRay *r, int s, int a)
+{
+    return _mm256_mul_ps(_mm256_sub_ps(row(n, r->rows[3 * s + a]), _mm256_broadcast_ss(&r->org[s][a])),
+                         _mm256_broadcast_ss(&r->inv[s][a]));
+}
+
 static inline unsigned node_test_avx(const RfBvhNode *n, const NodeRay *nr, __m256 tmin, __m256 tmax, float *tn)
 {
     /* e > t0 ? e : t0 with e first: a NaN e (0 * inf) drops out */
-    __m256 e0 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->rows[0]), nr->org[0][0]), nr->inv[0][0]);
-    __m256 x0 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->rows[3]), nr->org[1][0]), nr->inv[1][0]);
-    __m256 e1 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->rows[1]), nr->org[0][1]), nr->inv[0][1]);
-    __m256 x1 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->rows[4]), nr->org[1][1]), nr->inv[1][1]);
-    __m256 e2 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->rows[2]), nr->org[0][2]), nr->inv[0][2]);
-    __m256 x2 = _mm256_mul_ps(_mm256_sub_ps(row(n, nr->rows[5]), nr->org[1][2]), nr->inv[1][2]);
+    const RfBvhRay *r = nr->r;
+    __m256 e0 = slab(n, r, 0, 0), x0 = slab(n, r, 1, 0);
+    __m256 e1 = slab(n, r, 0, 1), x1 = slab(n, r, 1, 1);
+    __m256 e2 = slab(n, r, 0, 2), x2 = slab(n, r, 1, 2);
     __m256 t0 = _mm256_max_ps(e2, _mm256_max_ps(e1, _mm256_max_ps(e0, tmin)));
     __m256 t1 = _mm256_min_ps(x2, _mm256_min_ps(x1, _mm256_min_ps(x0, tmax)));
     _mm256_storeu_ps(tn, t0);
