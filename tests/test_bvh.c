@@ -190,6 +190,17 @@ static void check_rays(Scene *s, const RfRay *rays, int n, double t_max, const c
                 (got.normal.x != want.normal.x || got.normal.y != want.normal.y || got.normal.z != want.normal.z))
                 rf_test_fail(__FILE__, __LINE__, "%s: cone normal of key %llu differs", what, (unsigned long long)got.key);
             rf_test_checks += got.cone != NULL;
+            /* a triangle's normal, kept by a small BVH (RfBvh.normals) or computed by the side
+             * test: rf_triangle_unit_normal's bits; a BVH that keeps them always passes one on */
+            if (got.tri) {
+                RfVec3 n = rf_triangle_unit_normal(got.tri);
+                if (got.has_normal && (got.normal.x != n.x || got.normal.y != n.y || got.normal.z != n.z))
+                    rf_test_fail(__FILE__, __LINE__, "%s: triangle normal of key %llu differs", what,
+                                 (unsigned long long)got.key);
+                if (bvh.normals && !got.has_normal)
+                    rf_test_fail(__FILE__, __LINE__, "%s: no kept normal for key %llu", what, (unsigned long long)got.key);
+                rf_test_checks++;
+            }
         }
         rf_bvh_free(&bvh);
     }

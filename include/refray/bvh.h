@@ -107,6 +107,8 @@ typedef struct {
     int item_count, tri_count;
     int depth;         /* levels of 8-wide nodes, root = 1 */
     double vmax;       /* max |coordinate| of any triangle vertex (the filter's error scale) */
+    RfVec3 *normals;   /* a small BVH's: each triangle lane's rf_triangle_unit_normal (blocks' order),
+                          read by the side test of a one-sided triangle; NULL in a large one */
     int scalar;
 } RfBvh;
 
@@ -147,7 +149,8 @@ typedef int (*RfBvhItemFn)(void *ctx, uint64_t key, const RfBvhRay *ray, double 
  * or with a hit's key (a later hit at the same t must have a lower key). When a triangle, a
  * sphere or a cone of the BVH is the nearest: tri, sphere or cone (the others NULL), for a
  * triangle its edge functions (rf_watertight_edges: the barycentric coordinates are
- * edges[0..2] / edges[3]) and, when its side was checked, its unit normal (has_normal), for a
+ * edges[0..2] / edges[3]) and, when its side was checked or the BVH keeps its triangles'
+ * normals (RfBvh.normals), its unit normal (has_normal), for a
  * sphere its roots and far (the far root: rf_sphere_root_normal), for a cone its normal, and the
  * user bits; all three NULL for the caller's items. */
 typedef struct {

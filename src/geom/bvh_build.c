@@ -862,6 +862,26 @@ static int fill_blocks(void *ctx, int chunk, int thread)
     return 0;
 }
 
+/* The unit normals of a small BVH's triangles (RfBvh.normals), made by the routine the side
+ * test called per candidate (the same bits): whitted's ground computed one for most camera rays.
+ * A large BVH computes them: there the array would be one more cache miss per candidate, and
+ * 24 bytes a triangle. Returns 0 when out of memory. */
+#define NORMALS_UP_TO 16384 /* triangle lanes: 384 KB of normals */
+static int unit_normals(RfBvh *bvh)
+{
+    size_t lanes = (size_t)bvh->block_count * LANES;
+    if (lanes == 0 || lanes > NORMALS_UP_TO)
+        return 1;
+    if (!(bvh->normals = malloc(sizeof *bvh->normals * lanes)))
+        return 0;
+    for (size_t i = 0; i < lanes; i++) {
+        const RfBvhTriBlock *blk = &bvh->blocks[i / LANES];
+        int k = (int)(i % LANES);
+        bvh->normals[i] = blk->key[k] ? rf_triangle_unit_normal(&blk->tri[k]) : rf_vec3(0, 0, 0);
+    }
+    return 1;
+}
+
 static int cmp_task_size(const void *a, const void *b, void *ctx)
 {
     const TaskList *tl = ctx;
@@ -1051,7 +1071,7 @@ RfStatus rf_bvh_build(RfBvh *bvh, const RfBvhDesc *desc)
         }
     bvh->other_count = others;
     FillJob fj = {bvh, b.ids, payload, leaf_node, leaf_slot, leaf_start, leaves};
-    if (rf_parallel_for(CHUNKS, threads, fill_blocks, NULL, &fj) != RF_OK)
+    if (rf_parallel_for(CHUNKS, threads, fill_blocks, NULL, &fj) != RF_OK || !unit_normals(bvh))
         goto done;
     for (int i = 0; i < leaves; i++)
         bvh->nodes[leaf_node[i]].pad[leaf_slot[i]] = 0;
@@ -1086,12 +1106,14 @@ void rf_bvh_free(RfBvh *bvh)
     free(bvh->blocks);
     free(bvh->others);
     free(bvh->cones);
+    free(bvh->normals);
     memset(bvh, 0, sizeof *bvh);
 }
 
 size_t rf_bvh_bytes(const RfBvh *bvh)
 {
     return sizeof *bvh->nodes * (size_t)bvh->node_count + sizeof *bvh->blocks * (size_t)bvh->block_count +
-           sizeof *bvh->others * (size_t)bvh->other_count + sizeof *bvh->cones * (size_t)bvh->cone_count;
+           sizeof *bvh->others * (size_t)bvh->other_count + sizeof *bvh->cones * (size_t)bvh->cone_count +
+           (bvh->normals ? sizeof *bvh->normals * (size_t)bvh->block_count * LANES : 0);
 }
 

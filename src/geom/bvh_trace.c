@@ -316,9 +316,11 @@ static RF_INLINE_ALWAYS int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *
                 continue;
             unsigned sides = blk->user[k] >> 30;
             int sided = mode == NEAREST && sides != RF_BVH_SEE_BOTH;
-            RfVec3 nrm = {0, 0, 0};
+            const RfVec3 *kept = bvh->normals ? &bvh->normals[(size_t)(blk - bvh->blocks) * LANES + (size_t)k] : NULL;
+            RfVec3 nrm = kept ? *kept : rf_vec3(0, 0, 0);
             if (sided) {
-                nrm = rf_triangle_unit_normal(&blk->tri[k]);
+                if (!kept)
+                    nrm = rf_triangle_unit_normal(&blk->tri[k]);
                 int front = rf_vec3_dot(r->ray.dir, nrm) < 0.0;
                 if (front != (sides == RF_BVH_SEE_FRONT))
                     continue;
@@ -329,7 +331,7 @@ static RF_INLINE_ALWAYS int leaf_tris(const RfBvh *bvh, uint32_t ref, RfBvhRay *
             best->sphere = NULL;
             best->cone = NULL;
             memcpy(best->edges, e, sizeof e);
-            best->has_normal = sided;
+            best->has_normal = sided || kept;
             best->normal = nrm;
             best->user = blk->user[k] & USER_BITS;
             improved = 1;
