@@ -279,6 +279,19 @@ static inline void rf_fuzz_mtl_scene(RfScene *s)
     rf_fuzz_scene(s);
 }
 
+/* A scene a reader accepted: rf_scene_validate, which checks every primitive again (the readers
+ * check each as they add it and leave the whole-scene pass out), must pass too; then as
+ * rf_fuzz_scene. */
+static inline void rf_fuzz_read_scene(const RfScene *s)
+{
+    char err[512];
+    if (rf_scene_validate(s, "fuzz", err, sizeof err) != RF_OK) {
+        fprintf(stderr, "a scene the reader accepted fails rf_scene_validate: %s\n", err);
+        abort();
+    }
+    rf_fuzz_scene(s);
+}
+
 /* An image as `refray diff` uses it: compared with itself and with a copy shifted by one
  * channel value, heatmaps, a silhouette mask for one-channel (depth) images, and written back
  * as PNG and EXR into dir. */
@@ -487,7 +500,7 @@ static inline RfStatus rf_fuzz_run(const char *target, const uint8_t *data, size
     if (strcmp(target, "nff") == 0) {
         st = rf_scene_read_nff(name, (const char *)data, size, &lo, &scene, err, sizeof err);
         if (st == RF_OK)
-            rf_fuzz_scene(&scene);
+            rf_fuzz_read_scene(&scene);
         rf_scene_free(&scene);
         /* the other field-of-view reading: another camera window */
         rf_scene_init(&scene);
@@ -498,11 +511,11 @@ static inline RfStatus rf_fuzz_run(const char *target, const uint8_t *data, size
     } else if (strcmp(target, "rf") == 0) {
         st = rf_scene_read_rf(name, (const char *)data, size, &scene, err, sizeof err);
         if (st == RF_OK)
-            rf_fuzz_scene(&scene);
+            rf_fuzz_read_scene(&scene);
     } else if (strcmp(target, "obj") == 0) {
         st = rf_scene_read_obj(name, (const char *)data, size, &lo, &scene, err, sizeof err);
         if (st == RF_OK)
-            rf_fuzz_scene(&scene);
+            rf_fuzz_read_scene(&scene);
         if (rf_hash_bytes(0, data, size) % 4 == 0) /* a quarter of the inputs: it costs 4 reads */
             rf_fuzz_obj_chunks(name, data, size);
     } else if (strcmp(target, "mtl") == 0) {

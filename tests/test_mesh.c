@@ -14,14 +14,24 @@
 #include "../fuzz/fuzz_common.h" /* rf_fuzz_same_scene */
 #include "../src/scene/reader.h"
 
+/* A scene a reader accepted passes the whole check too (the readers check each primitive as
+ * they add it and leave that part of rf_scene_validate out). */
+static RfStatus validated(RfStatus st, const RfScene *s)
+{
+    char err[512];
+    if (st == RF_OK)
+        RF_CHECK_EQ_INT(rf_scene_validate(s, "t", err, sizeof err), RF_OK);
+    return st;
+}
+
 static RfStatus read_obj(const char *text, RfScene *s, char *err, size_t errsz)
 {
-    return rf_scene_read_obj("t.obj", text, strlen(text), NULL, s, err, errsz);
+    return validated(rf_scene_read_obj("t.obj", text, strlen(text), NULL, s, err, errsz), s);
 }
 
 static RfStatus read_rf(const char *text, RfScene *s, char *err, size_t errsz)
 {
-    return rf_scene_read_rf("t.rf", text, strlen(text), s, err, errsz);
+    return validated(rf_scene_read_rf("t.rf", text, strlen(text), s, err, errsz), s);
 }
 
 /* A fresh temporary folder with the given files (name, text pairs, NULL-terminated); dir gets

@@ -1087,7 +1087,7 @@ RfStatus rf_scene_read_obj(const char *name, const char *text, size_t len,
     if (!st)
         st = default_view(scene, name, err, errsz);
     if (!st)
-        st = rf_scene_validate(scene, name, err, errsz);
+        st = rf__scene_validate_read(scene, name, err, errsz);
     if (st)
         rf_scene_free(scene);
     return st;

@@ -69,7 +69,7 @@ RfStatus rf__reader_finish(RfLexer *lx, RfScene *scene, RfStatus st)
                           scene->format == RF_FORMAT_NFF ? "NFF needs a viewpoint 'v'"
                                                          : "add a 'camera' statement");
     if (!st)
-        st = rf_scene_validate(scene, lx->name, lx->err, lx->errsz);
+        st = rf__scene_validate_read(scene, lx->name, lx->err, lx->errsz);
     if (st)
         rf_scene_free(scene);
     return st;

@@ -47,7 +47,8 @@ static RfStatus located(char *err, size_t errsz, const char *source, RfSrcLoc lo
     return st;
 }
 
-RfStatus rf_scene_validate(const RfScene *scene, const char *source, char *err, size_t errsz)
+/* rf_scene_validate; prims = 0 leaves out the primitives' checks */
+static RfStatus validate(const RfScene *scene, const char *source, char *err, size_t errsz, int prims)
 {
     char msg[256];
     RfSrcLoc loc = {1, 1};
@@ -72,7 +73,7 @@ RfStatus rf_scene_validate(const RfScene *scene, const char *source, char *err, 
     for (size_t i = 0; i < scene->light_count; i++)
         if ((st = check_light(&scene->lights[i], msg, sizeof msg)))
             return located(err, errsz, source, scene->lights[i].loc, msg, st);
-    for (size_t i = 0; i < scene->prim_count; i++)
+    for (size_t i = 0; prims && i < scene->prim_count; i++)
         if ((st = rf_scene_check_primitive(scene, &scene->prims[i], msg, sizeof msg)))
             return located(err, errsz, source, scene->prims[i].loc, msg, st);
     if ((st = rf_scene_graph_check(scene, &loc, msg, sizeof msg)))
@@ -80,3 +81,12 @@ RfStatus rf_scene_validate(const RfScene *scene, const char *source, char *err, 
     return RF_OK;
 }
 
+RfStatus rf_scene_validate(const RfScene *scene, const char *source, char *err, size_t errsz)
+{
+    return validate(scene, source, err, errsz, 1);
+}
+
+RfStatus rf__scene_validate_read(const RfScene *scene, const char *source, char *err, size_t errsz)
+{
+    return validate(scene, source, err, errsz, 0);
+}
