@@ -39,7 +39,8 @@ typedef struct {
     int item_count;
     int *bvh_items;      /* the BVH's items: items[bvh_items[j]] */
     int bvh_count;
-    RfAabb box;          /* of the bounded items (objects: for their instances' boxes) */
+    RfAabb box;          /* an object's: of its bounded items, for its instances' boxes (the
+                            world's is not needed, nor made) */
     uint64_t *unbounded; /* keys of the items tested for every ray: planes, instances of
                             unbounded objects */
     int unbounded_count;
@@ -279,7 +280,8 @@ static RfStatus build_level(RfTracer *t, size_t first, size_t end, int world, Le
             lv->items[lv->item_count++] = it;
             lv->unbounded[lv->unbounded_count++] = item_key(it);
         } else if (p->type == RF_PRIM_POLYGON) { /* fan or ear-clipped triangles */
-            lv->box = rf_aabb_union(lv->box, item_box(scene, it));
+            if (!world)
+                lv->box = rf_aabb_union(lv->box, item_box(scene, it));
             for (int k = 0; k + 2 < p->u.poly.count; k++) {
                 it.sub = k;
                 lv->bvh_items[bvh_count++] = lv->item_count;
@@ -288,7 +290,8 @@ static RfStatus build_level(RfTracer *t, size_t first, size_t end, int world, Le
         } else {
             if (p->type == RF_PRIM_TRIANGLE)
                 it.sub = 0;
-            lv->box = rf_aabb_union(lv->box, item_box(scene, it));
+            if (!world)
+                lv->box = rf_aabb_union(lv->box, item_box(scene, it));
             lv->bvh_items[bvh_count++] = key;
             lv->items[lv->item_count++] = it;
         }
