@@ -779,7 +779,7 @@ static int make_refs(void *ctx, int chunk, int thread)
             const RfVec3 *p[3] = {&it.tri.p1, &it.tri.p2, &it.tri.p3};
             box = rf_aabb_add_point(rf_aabb_add_point(rf_aabb_add_point(rf_aabb_empty(), *p[0]), *p[1]), *p[2]);
             for (int v = 0; v < 3; v++) {
-                double m = fmax(fabs(p[v]->x), fmax(fabs(p[v]->y), fabs(p[v]->z)));
+                double m = rf_max_num(fabs(p[v]->x), rf_max_num(fabs(p[v]->y), fabs(p[v]->z))); /* fmax, inline */
                 vmax = m > vmax ? m : vmax;
             }
             j->ids[i] = i;

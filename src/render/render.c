@@ -68,10 +68,11 @@ static int resolve(const RfScene *scene, const RfRenderOptions *opt, Resolved *r
            (r->aperture == 0.0 || (r->focus > 0.0 && isfinite(r->focus)));
 }
 
-/* The parts a render of this scene with these options needs (kernel.h). */
-static unsigned needed_parts(const RfScene *scene, const RfRenderOptions *opt, const Resolved *r)
+/* The parts a render of this scene with these options needs (kernel.h); f: its
+ * rf_scene_features (a pass over every primitive, made once per render). */
+static unsigned needed_parts(const RfScene *scene, unsigned f, const RfRenderOptions *opt, const Resolved *r)
 {
-    unsigned f = rf_scene_features(scene), k = 0;
+    unsigned k = 0;
     if (!opt->local_only && scene->light_count > 0)
         k |= RF_K_SHADOW;
     if (!opt->local_only && r->max_depth > 1 && (f & (RF_FEAT_REFLECTION | RF_FEAT_TRANSMISSION))) {
@@ -139,7 +140,7 @@ unsigned rf_render_kernel(const RfScene *scene, const RfRenderOptions *opt)
 {
     Resolved r;
     resolve(scene, opt, &r);
-    const RfKernel *k = choose_kernel(needed_parts(scene, opt, &r), opt->kernel);
+    const RfKernel *k = choose_kernel(needed_parts(scene, rf_scene_features(scene), opt, &r), opt->kernel);
     return k ? k->parts : 0;
 }
 
@@ -318,12 +319,13 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     job->adaptive_threshold = res.adaptive_threshold;
     job->shutter_open = scene->render.shutter_open;
     job->shutter_close = scene->render.shutter_close;
-    job->moving = (rf_scene_features(scene) & RF_FEAT_MOTION) != 0;
+    const unsigned features = rf_scene_features(scene); /* a pass over every primitive: once */
+    job->moving = (features & RF_FEAT_MOTION) != 0;
     job->local_only = opt->local_only;
     /* filtered shadows differ from opaque ones only where some surface transmits: elsewhere
      * every crossing has kt = 0 and blocks, so the opaque query (one any-hit, cached) gives the
      * same image */
-    job->filtered_shadows = res.shadows == RF_SHADOWS_FILTERED && (rf_scene_features(scene) & RF_FEAT_TRANSMISSION);
+    job->filtered_shadows = res.shadows == RF_SHADOWS_FILTERED && (features & RF_FEAT_TRANSMISSION);
     job->fixed_offset = opt->fixed_offset;
     job->seed = opt->seed;
     job->min_contribution = res.threshold;
@@ -339,7 +341,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     if (st != RF_OK)
         return st;
     job->hither = sc->hither;
-    unsigned needed = needed_parts(scene, opt, &res);
+    unsigned needed = needed_parts(scene, features, opt, &res);
     /* a trace runs the general kernel, the only one with the trace's events (the same image) */
     const RfKernel *kernel = choose_kernel(needed, opt->trace ? RF_K_ALL : opt->kernel);
     if (!kernel) /* a kernel asked for that lacks a part the scene needs */
@@ -473,7 +475,7 @@ RfStatus rf_render(const RfScene *scene, const RfRenderOptions *opt, RfImage *im
     stats->samples = job->samples;
     stats->max_depth = job->max_depth;
     stats->threads = threads;
-    stats->features = rf_scene_features(scene);
+    stats->features = features;
     stats->kernel = kernel->parts;
     /* the share of the threads' time in the tile phase spent waiting (the last tiles) */
     int used = threads < rf_render_tile_count(crop_w, crop_h) ? threads : rf_render_tile_count(crop_w, crop_h);
