@@ -95,7 +95,7 @@ RfStatus rf_scene_graph_check(const RfScene *scene, RfSrcLoc *loc, char *msg, si
                         ob->name);
         }
     }
-    for (size_t i = 0; i < scene->prim_count; i++) {
+    for (size_t i = 0; scene->instance_count > 0 && i < scene->prim_count; i++) { /* a mesh has none */
         const RfPrimitive *p = &scene->prims[i];
         if (p->type != RF_PRIM_INSTANCE)
             continue;
