@@ -951,11 +951,148 @@ static void test_obj_parse_chunks(void)
     remove_files(dir, files);
 }
 
+/* The definition rf_lex_decimal keeps (lexer.h), digit by digit: the test's reference for the
+ * reader's faster loops (eight fraction digits at a time). */
+static const char *decimal_definition(const char *s, const char *end, double *out)
+{
+    static const double pow10[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                     1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    int neg = 0, digits = 0, sig = 0, scale = 0, frac = 0;
+    uint64_t m = 0;
+    if (s < end && (*s == '+' || *s == '-'))
+        neg = *s++ == '-';
+    for (;;) {
+        for (; s < end && *s >= '0' && *s <= '9'; s++, digits++) {
+            scale -= frac;
+            if (m || *s != '0') {
+                if (++sig > 15)
+                    return NULL;
+                m = m * 10 + (uint64_t)(*s - '0');
+            }
+        }
+        if (frac || !(s < end && *s == '.'))
+            break;
+        s++, frac = 1;
+    }
+    if (digits == 0)
+        return NULL;
+    if (s < end && (*s == 'e' || *s == 'E')) {
+        int eneg = 0, e = 0, ed = 0;
+        s++;
+        if (s < end && (*s == '+' || *s == '-'))
+            eneg = *s++ == '-';
+        for (; s < end && *s >= '0' && *s <= '9'; s++, ed++)
+            if ((e = e * 10 + (*s - '0')) > 400)
+                return NULL;
+        if (ed == 0)
+            return NULL;
+        scale += eneg ? -e : e;
+    }
+    if (scale < -22 || scale > 22)
+        return NULL;
+    double v = scale < 0 ? (double)m / pow10[-scale] : (double)m * pow10[scale];
+    *out = neg ? -v : v;
+    return s;
+}
+
+static void test_lex_numbers(void)
+{
+    RfTestRng r = {2026};
+    uint64_t st = 0x9E3779B97F4A7C15ULL;
+    int bad8 = 0, bad = 0, accepted = 0;
+    /* rf_lex_digits8 against a loop: every run length, zeros first, bytes of every value after */
+    for (int it = 0; it < 200000; it++) {
+        char b[16];
+        for (int i = 0; i < 16; i++) {
+            st = st * 6364136223846793005ULL + 1442695040888963407ULL;
+            unsigned x = (unsigned)(st >> 33);
+            b[i] = (char)(x % 4 ? '0' + (int)(x % 10) : (int)(x >> 8) % 256);
+        }
+        for (int i = 0; i < it % 9; i++)
+            b[i] = '0';
+        uint64_t v = 0;
+        int z = 0, n = rf_lex_digits8(b, b + 8 + it % 9, &v, &z), m = 0, zz = 0;
+        uint64_t w = 0;
+        for (; m < 8 && b[m] >= '0' && b[m] <= '9'; m++) {
+            w = w * 10 + (uint64_t)(b[m] - '0');
+            zz += w == 0;
+        }
+        bad8 += n >= 0 && (n != m || v != w || z != zz);
+    }
+    /* rf_lex_decimal against its definition and strtod: signs, leading zeros, long fractions,
+     * exponents, other bytes after, and every cut of the text */
+    for (int it = 0; it < 100000; it++) {
+        char buf[96];
+        int k = 0;
+        unsigned x = (unsigned)rf_test_uniform(&r, 0, 1e9);
+        if (x % 3 == 0)
+            buf[k++] = x % 2 ? '-' : '+';
+        for (int i = 0; i < (int)(x / 3 % 4); i++)
+            buf[k++] = '0';
+        for (int i = 0, n = (int)rf_test_uniform(&r, 0, 19); i < n; i++)
+            buf[k++] = (char)('0' + (int)rf_test_uniform(&r, 0, 10));
+        if (x / 12 % 2) {
+            buf[k++] = '.';
+            for (int i = 0, n = (int)rf_test_uniform(&r, 0, 3); i < n; i++)
+                buf[k++] = '0';
+            for (int i = 0, n = (int)rf_test_uniform(&r, 0, 21); i < n; i++)
+                buf[k++] = (char)('0' + (int)rf_test_uniform(&r, 0, 10));
+        }
+        if (x / 24 % 5 == 0) {
+            buf[k++] = 'e';
+            if (x / 120 % 2)
+                buf[k++] = '-';
+            for (int i = 0, n = (int)rf_test_uniform(&r, 0, 4); i < n; i++)
+                buf[k++] = (char)('0' + (int)rf_test_uniform(&r, 0, 10));
+        }
+        for (int i = 0, n = (int)rf_test_uniform(&r, 0, 12); i < n && k < 95; i++)
+            buf[k++] = " .e-/#9\r"[(int)rf_test_uniform(&r, 0, 8)];
+        int len = x / 600 % 2 ? k : (int)rf_test_uniform(&r, 0, k + 1);
+        double v1 = 0.0, v2 = 0.0;
+        const char *e1 = decimal_definition(buf, buf + len, &v1), *e2 = rf_lex_decimal(buf, buf + len, &v2);
+        int same = e1 == e2 && (!e1 || memcmp(&v1, &v2, sizeof v1) == 0);
+        if (e1) { /* and strtod agrees on what was read */
+            char tmp[100];
+            memcpy(tmp, buf, (size_t)(e1 - buf));
+            tmp[e1 - buf] = 0;
+            same &= strtod(tmp, NULL) == v1;
+            accepted++;
+        }
+        if (!same && bad++ < 3)
+            printf("  '%.*s': definition %d %.17g, rf_lex_decimal %d %.17g\n", len, buf, e1 ? (int)(e1 - buf) : -1, v1,
+                   e2 ? (int)(e2 - buf) : -1, v2);
+    }
+    RF_CHECK_EQ_INT(bad8, 0);
+    RF_CHECK_EQ_INT(bad, 0);
+    RF_CHECK(accepted > 20000);
+    /* face indices of 1 to 12 digits (zeros before them), the fast path's eight at a time and the
+     * rest one by one: the scene of the plain indices */
+    char *text[2] = {malloc(8192), malloc(8192)};
+    size_t len[2] = {0, 0};
+    for (int k = 0; k < 2; k++) {
+        len[k] += (size_t)snprintf(text[k] + len[k], 8192 - len[k], "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\n");
+        for (int d = 1; d <= 12; d++)
+            len[k] += (size_t)snprintf(text[k] + len[k], 8192 - len[k], "f %0*d//1 %0*d//%d %0*d//1\n", k ? d : 1, 1,
+                                       k ? d : 1, 2, 1, k ? d : 1, d % 2 ? 3 : 4);
+    }
+    RfScene sc[2];
+    char err[512];
+    for (int k = 0; k < 2; k++)
+        RF_CHECK_EQ_INT(read_obj(text[k], &sc[k], err, sizeof err), RF_OK);
+    RF_CHECK(rf_fuzz_same_scene(&sc[0], &sc[1]));
+    RF_CHECK_EQ_INT(sc[1].prim_count, 12);
+    for (int k = 0; k < 2; k++) {
+        rf_scene_free(&sc[k]);
+        free(text[k]);
+    }
+}
+
 const RfTest rf_tests_mesh[] = {
     {"mesh_obj_threads_same_scene", test_obj_threads},
     {"mesh_obj_parse_chunks", test_obj_parse_chunks},
     {"mesh_obj_fast_path", test_obj_fast_path},
     {"mesh_obj_fast_normals", test_obj_fast_normals},
+    {"mesh_lex_numbers", test_lex_numbers},
     {"mesh_obj_index_forms", test_obj_index_forms},
     {"mesh_obj_polygons", test_obj_polygons},
     {"mesh_obj_vertex_normals", test_obj_vertex_normals},

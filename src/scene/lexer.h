@@ -6,7 +6,10 @@
 #define RF_SCENE_LEXER_H
 
 #include <stddef.h>
+#include <stdint.h>
+#include <string.h>
 
+#include "refray/ray.h" /* RF_INLINE_ALWAYS */
 #include "refray/rgb.h"
 #include "refray/status.h"
 #include "refray/vec.h"
@@ -43,6 +46,47 @@ void rf_lex_init_at(RfLexer *lx, const char *name, const char *text, size_t len,
  * (Clinger 1990), the same bits as strtod. Returns the end of the number, or NULL for anything
  * else (the caller falls back to strtod). */
 const char *rf_lex_decimal(const char *s, const char *end, double *out);
+/* The run of ASCII digits at s, up to 8 of them, read as one 8-byte word: returns how many there
+ * are (0 to 8; the run may go on after 8), their value in *value and how many of them are leading
+ * '0's in *zeros (all of them when the value is 0). -1 when fewer than 8 bytes are left before
+ * end (or on a big-endian host): the caller reads those one by one. The OBJ reader's indices and
+ * the fractions of its numbers go this way (fewer instructions than digit by digit from about
+ * four digits on). */
+static RF_INLINE_ALWAYS int rf_lex_digits8(const char *s, const char *end, uint64_t *value, int *zeros)
+{
+#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && \
+    defined(__GNUC__)
+    if (end - s < 8)
+        return -1;
+    uint64_t x;
+    memcpy(&x, s, sizeof x); /* byte k is s[k]: the first digit is the lowest byte */
+    /* per byte b - '0': a digit gives 0..9, whose high bit stays clear in it and in it + 0x76;
+     * any other byte sets one of them. Borrows and carries only move up from a byte that is no
+     * digit, so every byte below the first such byte is judged right. */
+    uint64_t d = x - 0x3030303030303030ULL;
+    uint64_t other = (d | (d + 0x7676767676767676ULL)) & 0x8080808080808080ULL;
+    int n = other ? __builtin_ctzll(other) >> 3 : 8;
+    if (n == 0) {
+        *value = 0;
+        *zeros = 0;
+        return 0;
+    }
+    d &= n == 8 ? ~0ULL : (1ULL << (8 * n)) - 1; /* the n digits' values, 0..9 a byte */
+    uint64_t nonzero = (d + 0x7F7F7F7F7F7F7F7FULL) & 0x8080808080808080ULL;
+    *zeros = nonzero ? __builtin_ctzll(nonzero) >> 3 : n;
+    /* the n digits as the last n of 8 (leading zeros before them), then pairs, fours, eight:
+     * byte k * 10 + byte k + 1, and so on, by multiplications that keep the lanes apart */
+    d <<= 8 * (8 - n);
+    d = d * 10 + (d >> 8);
+    d = (((d & 0x000000FF000000FFULL) * (100 + (1000000ULL << 32))) +
+         (((d >> 16) & 0x000000FF000000FFULL) * (1 + (10000ULL << 32)))) >> 32;
+    *value = d;
+    return n;
+#else
+    (void)s, (void)end, (void)value, (void)zeros;
+    return -1;
+#endif
+}
 /* Consumes the lookahead token (no-op at the end). */
 void rf_lex_advance(RfLexer *lx);
 /* 1 when the token is the word w. */

@@ -394,6 +394,14 @@ static long fast_index(const char **s, const char *end, size_t count)
 {
     long v = 0;
     const char *p = *s;
+    uint64_t eight;
+    int zeros, n = rf_lex_digits8(p, end, &eight, &zeros); /* most indices: 8 digits or fewer at once */
+    if (n >= 0) {
+        v = (long)eight;
+        p += n;
+        if (n < 8)
+            end = p; /* the run ended: the loop below has nothing left to read */
+    }
     for (; p < end && *p >= '0' && *p <= '9' && v <= 100000000000L; p++)
         v = v * 10 + (*p - '0');
     if (p == *s || v < 1 || (size_t)v > count)
