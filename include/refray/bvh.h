@@ -108,7 +108,8 @@ typedef struct {
     int depth;         /* levels of 8-wide nodes, root = 1 */
     double vmax;       /* max |coordinate| of any triangle vertex (the filter's error scale) */
     RfVec3 *normals;   /* a small BVH's: each triangle lane's rf_triangle_unit_normal (blocks' order),
-                          read by the side test of a one-sided triangle; NULL in a large one */
+                          read by the side test and passed on with the nearest hit; NULL in a
+                          large one */
     int scalar;
 } RfBvh;
 

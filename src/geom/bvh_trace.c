@@ -145,31 +145,24 @@ static inline unsigned node_test_scalar(const RfBvhNode *n, const RfBvhRay *r, f
 }
 
 #if RF_BVH_AVX
-/* The node test reads the ray's slab constants as broadcasts from the RfBvhRay: twelve ymm
- * registers of constants do not stay in registers beside the test's own, and spilled copies cost
- * the same load plus a broadcast and a store per query. */
-typedef struct {
-    const RfBvhRay *r;
-} NodeRay;
-
-static inline void node_ray(const RfBvhRay *r, NodeRay *nr) { nr->r = r; }
-
 static inline __m256 row(const RfBvhNode *n, size_t off)
 {
     return _mm256_load_ps(row_scalar(n, off));
 }
 
-/* (row - org[s][a]) * inv[s][a] for the near (s = 0) or far (s = 1) plane of axis a */
+/* (row - org[s][a]) * inv[s][a] for the near (s = 0) or far (s = 1) plane of axis a. The ray's
+ * slab constants are broadcast from the RfBvhRay at each test: twelve ymm registers of them do
+ * not stay in registers beside the test's own, and copies made once per query were spilled, a
+ * broadcast and a store per constant per query on top of the same load per test. */
 static inline __m256 slab(const RfBvhNode *n, const RfBvhRay *r, int s, int a)
 {
     return _mm256_mul_ps(_mm256_sub_ps(row(n, r->rows[3 * s + a]), _mm256_broadcast_ss(&r->org[s][a])),
                          _mm256_broadcast_ss(&r->inv[s][a]));
 }
 
-static inline unsigned node_test_avx(const RfBvhNode *n, const NodeRay *nr, __m256 tmin, __m256 tmax, float *tn)
+static inline unsigned node_test_avx(const RfBvhNode *n, const RfBvhRay *r, __m256 tmin, __m256 tmax, float *tn)
 {
     /* e > t0 ? e : t0 with e first: a NaN e (0 * inf) drops out */
-    const RfBvhRay *r = nr->r;
     __m256 e0 = slab(n, r, 0, 0), x0 = slab(n, r, 1, 0);
     __m256 e1 = slab(n, r, 0, 1), x1 = slab(n, r, 1, 1);
     __m256 e2 = slab(n, r, 0, 2), x2 = slab(n, r, 1, 2);
@@ -178,20 +171,17 @@ static inline unsigned node_test_avx(const RfBvhNode *n, const NodeRay *nr, __m2
     _mm256_storeu_ps(tn, t0);
     return (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ));
 }
-#else
-typedef struct { char none; } NodeRay; /* the scalar test reads the RfBvhRay itself */
-static inline void node_ray(const RfBvhRay *r, NodeRay *nr) { (void)r, (void)nr; }
 #endif
 
 /* node_test_avx or, with the scalar kernels, node_test_scalar */
-static RF_INLINE_ALWAYS unsigned node_test(const RfBvh *bvh, const RfBvhNode *n, const RfBvhRay *r, const NodeRay *nr,
-                                           float tmin, float tmax, float *tn)
+static RF_INLINE_ALWAYS unsigned node_test(const RfBvh *bvh, const RfBvhNode *n, const RfBvhRay *r, float tmin,
+                                           float tmax, float *tn)
 {
 #if RF_BVH_AVX
     if (!bvh->scalar)
-        return node_test_avx(n, nr, _mm256_set1_ps(tmin), _mm256_set1_ps(tmax), tn);
+        return node_test_avx(n, r, _mm256_set1_ps(tmin), _mm256_set1_ps(tmax), tn);
 #else
-    (void)bvh, (void)nr;
+    (void)bvh;
 #endif
     return node_test_scalar(n, r, tmin, tmax, tn);
 }
@@ -448,8 +438,6 @@ static inline int traverse(const RfBvh *bvh, RfBvhRay *r, double t_min, RfBvhHit
 {
     if (bvh->node_count == 0)
         return 0;
-    NodeRay nr;
-    node_ray(r, &nr);
     Entry stack[STACK];
     int top = 0, found = 0;
     const float tmin = rf__widen_down(t_min);
@@ -459,7 +447,7 @@ static inline int traverse(const RfBvh *bvh, RfBvhRay *r, double t_min, RfBvhHit
         if (REF_KIND(cur) == KIND_INNER) {
             const RfBvhNode *n = &bvh->nodes[REF_INDEX(cur)];
             float tn[WIDTH];
-            unsigned mask = node_test(bvh, n, r, &nr, tmin, tmax, tn);
+            unsigned mask = node_test(bvh, n, r, tmin, tmax, tn);
             if (mask) {
                 int k = __builtin_ctz(mask);
                 mask &= mask - 1;
@@ -553,15 +541,12 @@ static unsigned traverse4(const RfBvh *bvh, RfBvhRay *r, unsigned active, const 
     if (bvh->node_count == 0 || !active)
         return 0;
     RfRay4 r4;
-    NodeRay nr[4];
     float tmin[4], tmax[4];
     for (int l = 0; l < 4; l++) { /* an idle lane holds a copy of a working one: real numbers */
         int from = (active >> l) & 1 ? l : __builtin_ctz(active);
         rf_ray4_set(&r4, l, &r[from].ray);
         tmin[l] = rf__widen_down(t_min[from]);
         tmax[l] = rf__widen_up(best[from].t);
-        if ((active >> l) & 1)
-            node_ray(&r[l], &nr[l]);
     }
     Entry4 stack[STACK];
     int top = 0;
@@ -574,7 +559,7 @@ static unsigned traverse4(const RfBvh *bvh, RfBvhRay *r, unsigned active, const 
             unsigned m[4] = {0, 0, 0, 0}, any = 0;
             for (unsigned s = lanes; s; s &= s - 1) {
                 int l = __builtin_ctz(s);
-                m[l] = node_test(bvh, n, &r[l], &nr[l], tmin[l], tmax[l], tn[l]);
+                m[l] = node_test(bvh, n, &r[l], tmin[l], tmax[l], tn[l]);
                 any |= m[l];
             }
             if (any) {

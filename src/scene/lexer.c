@@ -96,8 +96,8 @@ static const uint32_t pow10_u32[9] = {1, 10, 100, 1000, 10000, 100000, 1000000, 
  * too many: NULL), scale falls by one per fraction digit. Returns the end of the run. Leading
  * zeros first, then one test per digit (a digit-by-digit test of "m or a nonzero digit" cost the
  * OBJ reader 184 instructions a number). */
-static RF_INLINE_ALWAYS const char *decimal_run(const char *s, const char *end, int frac, uint64_t *m, int *sig, int *digits,
-                                      int *scale)
+static RF_INLINE_ALWAYS const char *decimal_run(const char *s, const char *end, int frac, uint64_t *m, int *sig,
+                                                int *digits, int *scale)
 {
     const char *start = s;
     uint64_t eight;
