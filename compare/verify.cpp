@@ -5,6 +5,8 @@
 // acne and light leaks over scene scales 1e-4 .. 1e6, the optics edge cases, and the
 // invalid-sample count of stress renders. Exit status 1 on any real disagreement, 2 when a
 // scene cannot be loaded or is outside the verifier's range (or on bad usage).
+// This file: the driver (the options, the rows in processes, the table) and the small helpers
+// the parts share (verify_run.hpp lists the parts).
 #include "verify_run.hpp"
 
 #include <sys/wait.h>
@@ -36,7 +38,6 @@
 
 namespace rv {
 
-void example(Stats &st, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void example(Stats &st, const char *fmt, ...)
 {
     if (st.n_examples >= 3)
@@ -47,8 +48,6 @@ void example(Stats &st, const char *fmt, ...)
     va_end(ap);
 }
 
-// A ray whose exact evaluation is impossible (an exception from CGAL or the allocator, a
-// non-finite ray): counted as skipped, the first one kept for the report.
 void not_representable(Stats &st, RfRay r, const char *why)
 {
     st.rays++;
@@ -58,7 +57,6 @@ void not_representable(Stats &st, RfRay r, const char *why)
                  r.origin.z, r.dir.x, r.dir.y, r.dir.z, why);
 }
 
-void row_error(Stats &st, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void row_error(Stats &st, const char *fmt, ...)
 {
     st.error = 1;
@@ -74,7 +72,6 @@ bool finite_ray(RfRay r)
            std::isfinite(r.dir.x) && std::isfinite(r.dir.y) && std::isfinite(r.dir.z);
 }
 
-// Two unit vectors perpendicular to the unit vector k and to each other.
 void frame(RfVec3 k, RfVec3 *u, RfVec3 *v)
 {
     RfVec3 h = std::fabs(k.x) < 0.6 ? rf_vec3(1, 0, 0) : rf_vec3(0, 1, 0);
