@@ -427,7 +427,7 @@ void check_and_tally(Stats &st, const World &w, const Opts &o, RfRay r, int inte
         return;
     }
     try {
-        if (o.fault_every > 0 && ++st.evaluations % o.fault_every == 0) /* the testing hook (Opts) */
+        if (o.fault_every > 0 && ++st.evaluations % o.fault_every == 0) // the testing hook (Opts::fault_every)
             throw std::range_error("injected fault (REFRAY_VERIFY_FAULT)");
         Check c = check_ray(w, o, r, interior);
         tally(st, w, r, c);
