@@ -13,7 +13,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <cstdarg>
 #include <chrono>
 #include <cmath>
@@ -21,7 +20,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <deque>
 #include <exception>
 #include <map>
 #include <new>
@@ -31,10 +29,7 @@
 
 #include "../src/cli/exit_codes.h"
 #include "../src/cli/opt.h"
-#include "refray/numeric.h"
-#include "refray/optics.h"
 #include "refray/scene_io.h"
-#include "refray/transform.h"
 
 namespace rv {
 

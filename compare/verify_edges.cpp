@@ -3,10 +3,13 @@
 // stress renders in which no NaN or Inf may reach the film.
 #include "verify_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <vector>
+
+#include "refray/optics.h"
 
 namespace rv {
 

@@ -13,10 +13,7 @@
 #include <vector>
 
 #include "verify.hpp"
-#include "refray/numeric.h"
-#include "refray/optics.h"
-#include "refray/scene_io.h"
-#include "refray/transform.h"
+#include "refray/mat.h"
 
 namespace rv {
 

@@ -4,8 +4,11 @@
 #include "verify_run.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <string>
+#include <cstdlib>
+#include <map>
+#include <utility>
 #include <vector>
 
 namespace rv {

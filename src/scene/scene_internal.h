@@ -1,5 +1,5 @@
-/* refray: the scene model's internal helpers (scene.c defines them, scene_check.c the readers' check), shared below the readers
- * by scene_graph.c and scene_check.c and above them by reader.h. */
+/* refray: the scene model's internal helpers (scene.c defines them, scene_check.c the readers'
+ * check), shared below the readers by scene_graph.c and scene_check.c and above them by reader.h. */
 #ifndef RF_SCENE_INTERNAL_H
 #define RF_SCENE_INTERNAL_H
 
