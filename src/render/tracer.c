@@ -273,27 +273,28 @@ static RfStatus build_level(RfTracer *t, size_t first, size_t end, int world, Le
             lv->items[lv->item_count++] = it;
             if (bounded > 0) {
                 lv->bvh_items[bvh_count++] = key;
-                lv->box = rf_aabb_union(lv->box, b);
+                if (!world)
+                    lv->box = rf_aabb_union(lv->box, b);
             } else
                 lv->unbounded[lv->unbounded_count++] = item_key(it);
         } else if (p->type == RF_PRIM_PLANE) {
             lv->items[lv->item_count++] = it;
             lv->unbounded[lv->unbounded_count++] = item_key(it);
-        } else if (p->type == RF_PRIM_POLYGON) { /* fan or ear-clipped triangles */
-            if (!world)
+        } else {
+            if (!world) /* the whole primitive's box, whatever its items */
                 lv->box = rf_aabb_union(lv->box, item_box(scene, it));
-            for (int k = 0; k + 2 < p->u.poly.count; k++) {
-                it.sub = k;
-                lv->bvh_items[bvh_count++] = lv->item_count;
+            if (p->type == RF_PRIM_POLYGON) { /* fan or ear-clipped triangles */
+                for (int k = 0; k + 2 < p->u.poly.count; k++) {
+                    it.sub = k;
+                    lv->bvh_items[bvh_count++] = lv->item_count;
+                    lv->items[lv->item_count++] = it;
+                }
+            } else {
+                if (p->type == RF_PRIM_TRIANGLE)
+                    it.sub = 0;
+                lv->bvh_items[bvh_count++] = key;
                 lv->items[lv->item_count++] = it;
             }
-        } else {
-            if (p->type == RF_PRIM_TRIANGLE)
-                it.sub = 0;
-            if (!world)
-                lv->box = rf_aabb_union(lv->box, item_box(scene, it));
-            lv->bvh_items[bvh_count++] = key;
-            lv->items[lv->item_count++] = it;
         }
     }
     lv->bvh_count = bvh_count;
